@@ -1,0 +1,22 @@
+// Entry point of the `wisp` command line: one subcommand per main job (see apps/commands.hpp).
+#include <cstdio>
+#include <exception>
+
+#include "apps/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"wisp: physically simulated hair rendered as diffusion-curve vector art"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "wisp 0.1.0");
+  wisp::apps::add_diffuse_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "wisp: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

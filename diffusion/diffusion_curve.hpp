@@ -1,0 +1,67 @@
+// A diffusion curve (Orzan et al., "Diffusion Curves: A Vector Representation for Smooth-Shaded
+// Images", SIGGRAPH 2008): a cubic Bezier path with a colour on each side, diffused into the image
+// by the solver. Following Bezerra et al. ("Diffusion Constraints for Vector Graphics", NPAR 2010)
+// and small-usvg, each side is either a Dirichlet boundary (it imposes its colour) or a Neumann
+// one (an insulating barrier without colour).
+//
+// Coordinates are pixels: x to the right, y down, the image covers [0,W]x[0,H] and pixel (i,j) has
+// its centre at (i+0.5, j+0.5). The left side is the left of the direction of travel as the
+// picture is seen on screen: for direction d it lies towards (d.y, -d.x).
+#pragma once
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+namespace wisp::diffusion {
+
+using Color = Eigen::Vector3f;  // RGB in [0,1], interpolated and diffused as given (no gamma).
+
+// A colour at parameter t in [0,1] along the whole path. Stops are sorted by t; between stops the
+// colour is linear in t, outside them it is clamped to the first or last stop.
+struct ColorStop {
+  double t = 0;
+  Color color = Color::Zero();
+};
+
+// A blur radius (Gaussian sigma, pixels) at parameter t; 0 keeps the curve sharp.
+struct BlurStop {
+  double t = 0;
+  float sigma = 0;
+};
+
+enum class Boundary { Dirichlet, Neumann };
+
+struct DiffusionCurve {
+  // 3k+1 control points: k cubic segments sharing end points. Parameter t in [0,1] runs uniformly
+  // over segments: segment s covers [s/k, (s+1)/k].
+  std::vector<Eigen::Vector2d> points;
+  std::vector<ColorStop> left, right;
+  Boundary left_boundary = Boundary::Dirichlet;
+  Boundary right_boundary = Boundary::Dirichlet;
+  std::vector<BlurStop> blur;
+  // Parameter intervals [t0,t1] where the curve constrains the solve; empty means everywhere.
+  // Hidden parts of wisp outlines are left out this way without cutting the curve.
+  std::vector<std::pair<double, double>> active;
+
+  int segment_count() const { return points.size() >= 4 ? int(points.size() - 1) / 3 : 0; }
+};
+
+// A whole drawing: the image size it was authored for and its curves.
+struct Drawing {
+  int width = 0;
+  int height = 0;
+  std::vector<DiffusionCurve> curves;
+};
+
+// Colour of a side at parameter t (linear between stops, clamped outside). Empty stops give black.
+Color color_at(const std::vector<ColorStop>& stops, double t);
+// Blur sigma at parameter t (linear between stops, clamped outside). Empty stops give 0.
+float blur_at(const std::vector<BlurStop>& stops, double t);
+
+// Throws std::invalid_argument naming the curve when it is malformed: fewer than 4 or not 3k+1
+// control points, non-finite coordinates or colours, stop parameters outside [0,1] or unsorted,
+// negative blur. `what` prefixes the message (for example "drawing.xml: curve 3").
+void validate(const DiffusionCurve& curve, const std::string& what);
+
+}  // namespace wisp::diffusion
