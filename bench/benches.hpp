@@ -1,0 +1,13 @@
+// The benchmarks of wisp-bench. Each lives in bench/bench_<name>.cpp, prints one JSON document on
+// stdout (progress on stderr) and compares against its named peers in the same run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace wisp::bench {
+
+// Each returns the process exit code. `args` are the arguments after the benchmark's name.
+int run_solver(const std::vector<std::string>& args);
+
+}  // namespace wisp::bench
