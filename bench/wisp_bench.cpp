@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   using Bench = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Bench> benches = {
       {"solver", wisp::bench::run_solver},
+      {"arrangement", wisp::bench::run_arrangement},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");

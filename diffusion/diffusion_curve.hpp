@@ -5,11 +5,15 @@
 // one (an insulating barrier without colour).
 //
 // Coordinates are pixels: x to the right, y down, the image covers [0,W]x[0,H] and pixel (i,j) has
-// its centre at (i+0.5, j+0.5). The left side is the left of the direction of travel as the
-// picture is seen on screen: for direction d it lies towards (d.y, -d.x).
+// its centre at (i+0.5, j+0.5). For a direction of travel d, the left side lies towards
+// (-d.y, d.x): the mathematical left in y-up coordinates, which on screen (y down) appears on the
+// right of the direction of travel. This is small-usvg's SceneXML convention; the original
+// CurveSetXML files, whose x and y are swapped, come out the same way after their reader swaps
+// the two colour sets.
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -40,6 +44,10 @@ struct DiffusionCurve {
   Boundary left_boundary = Boundary::Dirichlet;
   Boundary right_boundary = Boundary::Dirichlet;
   std::vector<BlurStop> blur;
+  // A gradient curve (the Poisson variant of Orzan et al.) fixes no colour: it only prescribes the
+  // jump right - left across itself, as the gradient field w of  Laplacian(u) = div w. Its
+  // absolute colours come from the rest of the drawing. Boundary kinds are ignored for it.
+  bool gradient_only = false;
   // Parameter intervals [t0,t1] where the curve constrains the solve; empty means everywhere.
   // Hidden parts of wisp outlines are left out this way without cutting the curve.
   std::vector<std::pair<double, double>> active;

@@ -1,0 +1,842 @@
+// Black-box geometric multigrid for the constrained 5-point problem (see multigrid.hpp).
+//
+// Storage: every level keeps its arrays on a grid padded by one ghost point on each side, so
+// stencils never branch at the border: ghost values and couplings to ghosts are zero.
+// Operator at point p:  (A e)_p = diag_p e_p - sum_q a_pq e_q  over the 8 neighbours, with the
+// couplings stored once per pair: east, south, south-east and south-west of p.
+#include "diffusion/multigrid.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace wisp::diffusion {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Runs body(y0, y1) over rows [0, rows) in parallel chunks of about `points_per_task` points.
+template <class Body>
+void for_rows(int rows, int row_length, const Body& body) {
+  constexpr int kPointsPerTask = 16384;
+  const int grain = std::max(1, kPointsPerTask / std::max(1, row_length));
+  if (rows <= grain) {
+    body(0, rows);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows, grain),
+                    [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+}
+
+struct Level {
+  int w = 0, h = 0;  // interior size
+  int stride = 0;    // w + 2
+  bool nine_point = false;
+  std::vector<float> diag, inv_diag;  // inv_diag is 0 on fixed points: the smoother keeps e = 0
+  std::vector<float> ae, as, ase, asw;
+  std::vector<std::uint8_t> alive;  // 1 on free points
+  // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
+  // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
+  std::vector<float> e, rhs, res;  // channel planes, padded
+
+  size_t padded() const { return size_t(stride) * size_t(h + 2); }
+  size_t at(int x, int y) const { return size_t(y + 1) * stride + size_t(x + 1); }
+};
+
+// Weights of the fine points of coarse cell (I,J) (stored on the coarse level's padded grid):
+//   x0, x1: fine (2I+1, 2J) from coarse (I,J) and (I+1,J)
+//   y0, y1: fine (2I, 2J+1) from coarse (I,J) and (I,J+1)
+//   c00, c10, c01, c11: fine (2I+1, 2J+1) from (I,J), (I+1,J), (I,J+1), (I+1,J+1)
+struct Prolongation {
+  std::vector<float> x0, x1, y0, y1, c00, c10, c01, c11;
+};
+
+template <int NC>
+class Multigrid {
+ public:
+  Multigrid(const Problem& problem, const SolverOptions& options)
+      : problem_(problem), options_(options) {}
+
+  Solution run(const std::vector<float>* initial_guess);
+
+ private:
+  const Problem& problem_;
+  const SolverOptions& options_;
+  std::vector<Level> levels_;
+  std::vector<Prolongation> prolong_;  // prolong_[l]: from level l+1 into level l
+  std::array<double, NC> b_norm_{};  // scale of relative residuals (see relative())
+  std::vector<std::uint8_t> fixed_;  // the problem's fixed pixels plus the unreachable ones
+  // Exact solver of the coarsest level.
+  Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
+  std::vector<size_t> coarse_points_;
+
+  int mark_fixed(std::vector<std::uint8_t>& fixed) const;
+  void build_finest(const std::vector<std::uint8_t>& fixed);
+  void build_coarse(int l);
+  void build_coarsest();
+  void smooth(int l, int sweeps, bool reverse);
+  void residual(int l);  // levels_[l].res = rhs - A e
+  void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
+                   std::vector<float>& out);
+  std::array<double, NC> residual_norms(int l);
+  void restrict_residual(int l);  // levels_[l].res -> levels_[l+1].rhs
+  void prolongate_add(int l);     // levels_[l].e += P levels_[l+1].e
+  void solve_coarsest();
+  void vcycle(int l);
+  double relative(const std::array<double, NC>& norms) const;
+  double conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
+                            SolveStats& st);
+  void setup();
+  std::array<double, NC> residual_double(const std::vector<double>& u,
+                                         std::vector<float>& r_padded) const;
+  double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
+  std::array<double, NC> dot(const std::vector<float>& a, const std::vector<float>& b) const;
+};
+
+// Pixels not connected through open links to any Dirichlet pixel are fixed to 0 (their value is
+// undefined). Returns how many there were.
+template <int NC>
+int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
+  const Problem& p = problem_;
+  const std::vector<std::uint8_t> reached = reached_from_fixed(p);
+  int floating = 0;
+  fixed = p.fixed;
+  for (size_t i = 0; i < p.pixel_count(); ++i)
+    if (!reached[i]) {
+      fixed[i] = 1;
+      ++floating;
+    }
+  return floating;
+}
+
+// Finest level: the negative 5-point Laplacian over open links, restricted to free pixels.
+// The diagonal counts every open link (also those to fixed pixels, whose values are data).
+template <int NC>
+void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
+  const Problem& p = problem_;
+  Level& L = levels_[0];
+  L.w = p.width;
+  L.h = p.height;
+  L.stride = L.w + 2;
+  L.nine_point = false;
+  const size_t n = L.padded();
+  L.diag.assign(n, 0.0f);
+  L.inv_diag.assign(n, 0.0f);
+  L.ae.assign(n, 0.0f);
+  L.as.assign(n, 0.0f);
+  L.alive.assign(n, 0);
+  for (int y = 0; y < L.h; ++y)
+    for (int x = 0; x < L.w; ++x) {
+      const size_t i = p.index(x, y), k = L.at(x, y);
+      const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
+      const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
+      const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
+      if (!fixed[i]) {
+        L.alive[k] = 1;
+        L.diag[k] = float(open_e + open_s + open_w + open_n);
+        L.inv_diag[k] = 1.0f / L.diag[k];  // > 0: a free reached pixel has an open link
+        if (open_e && !fixed[i + 1]) L.ae[k] = 1.0f;
+        if (open_s && !fixed[i + p.width]) L.as[k] = 1.0f;
+      }
+    }
+}
+
+// Operator-dependent prolongation (Dendy 1982) from level l+1 into level l, then the Galerkin
+// coarse operator A_{l+1} = P^T A_l P.
+template <int NC>
+void Multigrid<NC>::build_coarse(int l) {
+  const Level& F = levels_[l];
+  Level& C = levels_[l + 1];
+  C.w = (F.w + 1) / 2;
+  C.h = (F.h + 1) / 2;
+  C.stride = C.w + 2;
+  C.nine_point = true;
+  const size_t nc = C.padded();
+  C.alive.assign(nc, 0);
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
+
+  // Couplings of a fine point (zero where the fine level is 5-point).
+  const int fs = F.stride;
+  const auto a = [&](const std::vector<float>& v, size_t k) { return v.empty() ? 0.0f : v[k]; };
+  struct Stencil {
+    float d, e, w, n, s, ne, nw, se, sw;
+  };
+  const auto stencil = [&](size_t k) {
+    return Stencil{F.diag[k],          F.ae[k],           F.ae[k - 1],       F.as[k - fs],
+                   F.as[k],            a(F.asw, k - fs + 1), a(F.ase, k - fs - 1), a(F.ase, k),
+                   a(F.asw, k)};
+  };
+  const auto ratio = [](float num, float den) {
+    return den > 1e-6f ? num / den : 0.0f;
+  };
+
+  // Collapsing the stencil of an edge point onto its two coarse neighbours (Dendy): the
+  // couplings beside a coarse neighbour (say north-west and south-west for the west one) are
+  // assumed to see that neighbour's value. That holds only if the neighbour is coupled to the
+  // point at all. Where a barrier runs between them (no direct coupling, neighbour alive), those
+  // couplings see the point's own side instead, so they join the point's own term; otherwise
+  // the interpolation would reach across the barrier. A fixed neighbour keeps the classic rule:
+  // its side sees the Dirichlet value 0 of the correction.
+  struct Collapse {
+    float weight, self;
+  };
+  const auto collapse = [](float direct, float beside, float alive, float diag) {
+    if (direct <= 1e-3f * diag) return Collapse{0.0f, beside};
+    if (alive == 0.0f) return Collapse{0.0f, 0.0f};
+    return Collapse{direct + beside, 0.0f};
+  };
+
+  Prolongation& P = prolong_[l];
+  for (auto* v : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11}) v->assign(nc, 0.0f);
+  const auto alive_c = [&](int I, int J) { return float(C.alive[C.at(I, J)]); };
+  // Edge points first: the cell centres interpolate from them.
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      const size_t kc = C.at(I, J);
+      if (2 * I + 1 < F.w) {
+        const size_t k = F.at(2 * I + 1, 2 * J);
+        if (F.alive[k]) {
+          const Stencil s = stencil(k);
+          const Collapse west = collapse(s.w, s.nw + s.sw, alive_c(I, J), s.d);
+          const Collapse east = collapse(s.e, s.ne + s.se, alive_c(I + 1, J), s.d);
+          const float den = s.d - s.n - s.s - west.self - east.self;
+          P.x0[kc] = ratio(west.weight, den);
+          P.x1[kc] = ratio(east.weight, den);
+        }
+      }
+      if (2 * J + 1 < F.h) {
+        const size_t k = F.at(2 * I, 2 * J + 1);
+        if (F.alive[k]) {
+          const Stencil s = stencil(k);
+          const Collapse north = collapse(s.n, s.nw + s.ne, alive_c(I, J), s.d);
+          const Collapse south = collapse(s.s, s.sw + s.se, alive_c(I, J + 1), s.d);
+          const float den = s.d - s.w - s.e - north.self - south.self;
+          P.y0[kc] = ratio(north.weight, den);
+          P.y1[kc] = ratio(south.weight, den);
+        }
+      }
+    }
+  const int cs = C.stride;
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      if (2 * I + 1 >= F.w || 2 * J + 1 >= F.h) continue;
+      const size_t k = F.at(2 * I + 1, 2 * J + 1);
+      if (!F.alive[k]) continue;
+      const size_t kc = C.at(I, J);
+      const Stencil s = stencil(k);
+      const float inv = s.d > 1e-6f ? 1.0f / s.d : 0.0f;
+      P.c00[kc] = (s.w * P.y0[kc] + s.n * P.x0[kc] + s.nw * alive_c(I, J)) * inv;
+      P.c10[kc] = (s.e * P.y0[kc + 1] + s.n * P.x1[kc] + s.ne * alive_c(I + 1, J)) * inv;
+      P.c01[kc] = (s.w * P.y1[kc] + s.s * P.x0[kc + cs] + s.sw * alive_c(I, J + 1)) * inv;
+      P.c11[kc] = (s.e * P.y1[kc + 1] + s.s * P.x1[kc + cs] + s.se * alive_c(I + 1, J + 1)) * inv;
+    }
+
+  // Galerkin product. Row p of P has at most 4 entries; row p of A P touches a 3x3 block of
+  // coarse points starting at base(p) = ((x-1)>>1, (y-1)>>1).
+  struct PRow {
+    int n = 0;
+    int I[4], J[4];
+    float w[4];
+  };
+  const auto prow = [&](int x, int y) {
+    PRow r;
+    if (x < 0 || y < 0 || x >= F.w || y >= F.h || !F.alive[F.at(x, y)]) return r;
+    const int I = x >> 1, J = y >> 1;
+    const size_t kc = C.at(I, J);
+    const auto add = [&](int i, int j, float w) {
+      if (w != 0.0f) {
+        r.I[r.n] = i;
+        r.J[r.n] = j;
+        r.w[r.n++] = w;
+      }
+    };
+    if (!(x & 1) && !(y & 1)) {
+      add(I, J, 1.0f);
+    } else if (!(y & 1)) {
+      add(I, J, P.x0[kc]);
+      add(I + 1, J, P.x1[kc]);
+    } else if (!(x & 1)) {
+      add(I, J, P.y0[kc]);
+      add(I, J + 1, P.y1[kc]);
+    } else {
+      add(I, J, P.c00[kc]);
+      add(I + 1, J, P.c10[kc]);
+      add(I, J + 1, P.c01[kc]);
+      add(I + 1, J + 1, P.c11[kc]);
+    }
+    return r;
+  };
+  // (A P) row of fine point (x,y) as a 3x3 block of coarse weights.
+  const auto ap_row = [&](int x, int y, float out[9]) {
+    std::fill(out, out + 9, 0.0f);
+    if (x < 0 || y < 0 || x >= F.w || y >= F.h) return;
+    const size_t k = F.at(x, y);
+    if (!F.alive[k]) return;
+    const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
+    const Stencil s = stencil(k);
+    const float coeff[9] = {-s.nw, -s.n, -s.ne, -s.w, s.d, -s.e, -s.sw, -s.s, -s.se};
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const float c = coeff[(dy + 1) * 3 + dx + 1];
+        if (c == 0.0f) continue;
+        const PRow r = prow(x + dx, y + dy);
+        for (int m = 0; m < r.n; ++m) out[(r.J[m] - by) * 3 + (r.I[m] - bx)] += c * r.w[m];
+      }
+  };
+
+  C.diag.assign(nc, 0.0f);
+  C.inv_diag.assign(nc, 0.0f);
+  for (auto* v : {&C.ae, &C.as, &C.ase, &C.asw}) v->assign(nc, 0.0f);
+  for_rows(C.h, C.w * 9, [&](int J0, int J1) {
+    // A P rows of the fine rows this chunk needs, computed once each.
+    const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
+    std::vector<float> ap(size_t(y_count) * F.w * 9);
+    for (int yy = 0; yy < y_count; ++yy)
+      for (int x = 0; x < F.w; ++x) ap_row(x, y_first + yy, &ap[(size_t(yy) * F.w + x) * 9]);
+    for (int J = J0; J < J1; ++J)
+      for (int I = 0; I < C.w; ++I) {
+        const size_t kc = C.at(I, J);
+        if (!C.alive[kc]) continue;
+        // A_c(K, K + (dx,dy)) for the self, east, south, south-east, south-west neighbours.
+        double acc[5] = {0, 0, 0, 0, 0};
+        constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
+        for (int y = 2 * J - 1; y <= 2 * J + 1; ++y)
+          for (int x = 2 * I - 1; x <= 2 * I + 1; ++x) {
+            if (x < 0 || y < 0 || x >= F.w || y >= F.h) continue;
+            const PRow r = prow(x, y);
+            float wk = 0.0f;
+            for (int m = 0; m < r.n; ++m)
+              if (r.I[m] == I && r.J[m] == J) wk = r.w[m];
+            if (wk == 0.0f) continue;
+            const float* row = &ap[(size_t(y - y_first) * F.w + x) * 9];
+            const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
+            for (int m = 0; m < 5; ++m) {
+              const int sx = I + kDx[m] - bx, sy = J + kDy[m] - by;
+              if (sx < 0 || sx > 2 || sy < 0 || sy > 2) continue;
+              acc[m] += double(wk) * row[sy * 3 + sx];
+            }
+          }
+        C.diag[kc] = float(acc[0]);
+        C.inv_diag[kc] = acc[0] > 0 ? float(1.0 / acc[0]) : 0.0f;
+        C.ae[kc] = float(-acc[1]);
+        C.as[kc] = float(-acc[2]);
+        C.ase[kc] = float(-acc[3]);
+        C.asw[kc] = float(-acc[4]);
+      }
+  });
+}
+
+// Dense LDLT of the coarsest level's free points.
+template <int NC>
+void Multigrid<NC>::build_coarsest() {
+  const Level& L = levels_.back();
+  coarse_points_.clear();
+  std::vector<int> index(L.padded(), -1);
+  for (int y = 0; y < L.h; ++y)
+    for (int x = 0; x < L.w; ++x)
+      if (L.alive[L.at(x, y)]) {
+        index[L.at(x, y)] = int(coarse_points_.size());
+        coarse_points_.push_back(L.at(x, y));
+      }
+  const int m = int(coarse_points_.size());
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
+  const int s = L.stride;
+  for (int r = 0; r < m; ++r) {
+    const size_t k = coarse_points_[r];
+    M(r, r) = L.diag[k];
+    const auto couple = [&](size_t k2, float a) {
+      if (index[k2] >= 0 && a != 0.0f) {
+        M(r, index[k2]) -= a;
+        M(index[k2], r) -= a;
+      }
+    };
+    couple(k + 1, L.ae[k]);
+    couple(k + s, L.as[k]);
+    if (L.nine_point) {
+      couple(k + s + 1, L.ase[k]);
+      couple(k + s - 1, L.asw[k]);
+    }
+  }
+  if (m > 0) coarse_ldlt_.compute(M);
+}
+
+template <int NC>
+void Multigrid<NC>::solve_coarsest() {
+  Level& L = levels_.back();
+  const size_t n = L.padded();
+  const int m = int(coarse_points_.size());
+  if (m == 0) return;
+  for (int c = 0; c < NC; ++c) {
+    Eigen::VectorXd b(m);
+    for (int r = 0; r < m; ++r) b[r] = L.rhs[c * n + coarse_points_[r]];
+    const Eigen::VectorXd x = coarse_ldlt_.solve(b);
+    for (int r = 0; r < m; ++r) L.e[c * n + coarse_points_[r]] = float(x[r]);
+  }
+}
+
+// Gauss-Seidel sweeps in an order-independent colouring. Points of one colour share no stencil
+// entry, so each colour is a Jacobi step on its points: rows run in parallel, every row computes
+// all its points into a buffer (which vectorises) and keeps those of the current colour.
+template <int NC>
+void Multigrid<NC>::smooth(int l, int sweeps, bool reverse) {
+  Level& L = levels_[l];
+  const size_t n = L.padded();
+  const int s = L.stride, w = L.w;
+  const int colours = L.nine_point ? 4 : 2;
+  for (int sweep = 0; sweep < sweeps; ++sweep)
+    for (int step = 0; step < colours; ++step) {
+      const int colour = reverse ? colours - 1 - step : step;
+      for_rows(L.h, w * NC, [&](int y0, int y1) {
+        std::vector<float> buf(static_cast<size_t>(w));
+        for (int y = y0; y < y1; ++y) {
+          // 2 colours: (x + y) parity. 4 colours: (x parity, y parity).
+          if (colours == 4 && (y & 1) != (colour >> 1)) continue;
+          const int x_parity = colours == 4 ? (colour & 1) : ((colour + y) & 1);
+          const size_t row = L.at(0, y);
+          const float* __restrict id = &L.inv_diag[row];
+          const float* __restrict ae = &L.ae[row];
+          const float* __restrict aw = &L.ae[row - 1];
+          const float* __restrict as = &L.as[row];
+          const float* __restrict an = &L.as[row - s];
+          for (int c = 0; c < NC; ++c) {
+            float* __restrict e = &L.e[c * n + row];
+            const float* __restrict b = &L.rhs[c * n + row];
+            float* __restrict out = buf.data();
+            if (!L.nine_point) {
+              for (int x = 0; x < w; ++x)
+                out[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
+                          an[x] * e[x - s]) *
+                         id[x];
+            } else {
+              const float* __restrict ase = &L.ase[row];
+              const float* __restrict anw = &L.ase[row - s - 1];
+              const float* __restrict asw = &L.asw[row];
+              const float* __restrict ane = &L.asw[row - s + 1];
+              for (int x = 0; x < w; ++x)
+                out[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
+                          an[x] * e[x - s] + ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] +
+                          asw[x] * e[x + s - 1] + ane[x] * e[x - s + 1]) *
+                         id[x];
+            }
+            for (int x = x_parity; x < w; x += 2) e[x] = out[x];
+          }
+        }
+      });
+    }
+}
+
+// out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded.
+template <int NC>
+void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
+                                const std::vector<float>& e_planes, std::vector<float>& out) {
+  Level& L = levels_[l];
+  const size_t n = L.padded();
+  const int s = L.stride, w = L.w;
+  for_rows(L.h, w * NC, [&](int y0, int y1) {
+    std::vector<float> zeros(b_planes ? 0 : static_cast<size_t>(w), 0.0f);
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = L.at(0, y);
+      const float* __restrict d = &L.diag[row];
+      const float* __restrict ae = &L.ae[row];
+      const float* __restrict aw = &L.ae[row - 1];
+      const float* __restrict as = &L.as[row];
+      const float* __restrict an = &L.as[row - s];
+      for (int c = 0; c < NC; ++c) {
+        const float* __restrict e = &e_planes[c * n + row];
+        const float* __restrict b = b_planes ? &(*b_planes)[c * n + row] : zeros.data();
+        float* __restrict r = &out[c * n + row];
+        if (!L.nine_point) {
+          for (int x = 0; x < w; ++x)
+            r[x] = b[x] - d[x] * e[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
+                   an[x] * e[x - s];
+        } else {
+          const float* __restrict ase = &L.ase[row];
+          const float* __restrict anw = &L.ase[row - s - 1];
+          const float* __restrict asw = &L.asw[row];
+          const float* __restrict ane = &L.asw[row - s + 1];
+          for (int x = 0; x < w; ++x)
+            r[x] = b[x] - d[x] * e[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
+                   an[x] * e[x - s] + ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] +
+                   asw[x] * e[x + s - 1] + ane[x] * e[x - s + 1];
+        }
+      }
+    }
+  });
+}
+
+template <int NC>
+void Multigrid<NC>::residual(int l) {
+  residual_of(l, &levels_[l].rhs, levels_[l].e, levels_[l].res);
+}
+
+// 2-norms of the residual per channel; rows are summed in order, whatever the thread count.
+template <int NC>
+std::array<double, NC> Multigrid<NC>::residual_norms(int l) {
+  residual(l);
+  const Level& L = levels_[l];
+  const size_t n = L.padded();
+  std::vector<double> rows(size_t(L.h) * NC, 0.0);
+  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int c = 0; c < NC; ++c) {
+        const float* r = &L.res[c * n + L.at(0, y)];
+        double sum = 0;
+        for (int x = 0; x < L.w; ++x) sum += double(r[x]) * r[x];
+        rows[size_t(y) * NC + c] = sum;
+      }
+  });
+  std::array<double, NC> norms{};
+  for (int y = 0; y < L.h; ++y)
+    for (int c = 0; c < NC; ++c) norms[c] += rows[size_t(y) * NC + c];
+  for (double& v : norms) v = std::sqrt(v);
+  return norms;
+}
+
+template <int NC>
+void Multigrid<NC>::restrict_residual(int l) {
+  const Level& F = levels_[l];
+  Level& C = levels_[l + 1];
+  const Prolongation& P = prolong_[l];
+  const size_t nf = F.padded(), nc = C.padded();
+  const int fs = F.stride, cs = C.stride;
+  for_rows(C.h, C.w * NC * 4, [&](int J0, int J1) {
+    for (int J = J0; J < J1; ++J)
+      for (int I = 0; I < C.w; ++I) {
+        const size_t kc = C.at(I, J);
+        const size_t k = F.at(2 * I, 2 * J);  // neighbours may be ghosts: residual 0 there
+        for (int c = 0; c < NC; ++c) {
+          const float* r = &F.res[c * nf];
+          float v = 0.0f;
+          if (C.alive[kc])
+            v = r[k] + P.x0[kc] * r[k + 1] + P.x1[kc - 1] * r[k - 1] + P.y0[kc] * r[k + fs] +
+                P.y1[kc - cs] * r[k - fs] + P.c00[kc] * r[k + fs + 1] +
+                P.c10[kc - 1] * r[k + fs - 1] + P.c01[kc - cs] * r[k - fs + 1] +
+                P.c11[kc - cs - 1] * r[k - fs - 1];
+          C.rhs[c * nc + kc] = v;
+        }
+      }
+  });
+}
+
+template <int NC>
+void Multigrid<NC>::prolongate_add(int l) {
+  Level& F = levels_[l];
+  const Level& C = levels_[l + 1];
+  const Prolongation& P = prolong_[l];
+  const size_t nf = F.padded(), nc = C.padded();
+  const int cs = C.stride;
+  for_rows(F.h, F.w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const int J = y >> 1;
+      for (int c = 0; c < NC; ++c) {
+        float* e = &F.e[c * nf + F.at(0, y)];
+        const float* ec = &C.e[c * nc];
+        for (int x = 0; x < F.w; ++x) {
+          const int I = x >> 1;
+          const size_t kc = C.at(I, J);
+          float v;
+          if (!(y & 1))
+            v = (x & 1) ? P.x0[kc] * ec[kc] + P.x1[kc] * ec[kc + 1] : ec[kc];
+          else if (!(x & 1))
+            v = P.y0[kc] * ec[kc] + P.y1[kc] * ec[kc + cs];
+          else
+            v = P.c00[kc] * ec[kc] + P.c10[kc] * ec[kc + 1] + P.c01[kc] * ec[kc + cs] +
+                P.c11[kc] * ec[kc + cs + 1];
+          e[x] += v;
+        }
+      }
+    }
+  });
+}
+
+template <int NC>
+void Multigrid<NC>::vcycle(int l) {
+  if (l + 1 == int(levels_.size())) {
+    solve_coarsest();
+    return;
+  }
+  // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
+  // and can precondition conjugate gradients.
+  smooth(l, options_.pre_smooth, false);
+  residual(l);
+  restrict_residual(l);
+  Level& C = levels_[l + 1];
+  std::fill(C.e.begin(), C.e.end(), 0.0f);
+  vcycle(l + 1);
+  prolongate_add(l);
+  smooth(l, options_.post_smooth, true);
+}
+
+// Per-channel dot products on the finest level, summed row by row in a fixed order.
+template <int NC>
+std::array<double, NC> Multigrid<NC>::dot(const std::vector<float>& a,
+                                          const std::vector<float>& b) const {
+  const Level& L = levels_[0];
+  const size_t n = L.padded();
+  std::vector<double> rows(size_t(L.h) * NC, 0.0);
+  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int c = 0; c < NC; ++c) {
+        const size_t k = c * n + L.at(0, y);
+        double sum = 0;
+        for (int x = 0; x < L.w; ++x) sum += double(a[k + x]) * b[k + x];
+        rows[size_t(y) * NC + c] = sum;
+      }
+  });
+  std::array<double, NC> out{};
+  for (int y = 0; y < L.h; ++y)
+    for (int c = 0; c < NC; ++c) out[c] += rows[size_t(y) * NC + c];
+  return out;
+}
+
+// Conjugate gradients on A e = r0, preconditioned by one symmetric V-cycle, each channel on its
+// own. Geometric coarsening cannot represent every slow mode of a drawing (a pocket that barriers
+// nearly seal off, say); CG removes those few outliers in a handful of iterations, so the solver
+// keeps its rate where plain V-cycles would stall. Starts from the FMG answer in levels_[0].e.
+template <int NC>
+double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double rel,
+                                         double tolerance, SolveStats& st) {
+  Level& L = levels_[0];
+  const size_t n = L.padded();
+  std::vector<float> x = L.e, r(r0.size()), p(r0.size(), 0.0f), q(r0.size());
+  residual_of(0, &r0, x, r);
+  std::array<double, NC> rz_old{};
+  double last_true = rel;
+  while (rel > tolerance && st.cycles < options_.max_cycles) {
+    L.rhs = r;
+    std::fill(L.e.begin(), L.e.end(), 0.0f);
+    vcycle(0);  // z = M r, in L.e
+    const std::array<double, NC> rz = dot(r, L.e);
+    for (int c = 0; c < NC; ++c) {
+      const float beta = rz_old[c] == 0 ? 0.0f : float(rz[c] / rz_old[c]);
+      float* pc = &p[c * n];
+      const float* z = &L.e[c * n];
+      for (size_t i = 0; i < n; ++i) pc[i] = z[i] + beta * pc[i];
+    }
+    rz_old = rz;
+    residual_of(0, nullptr, p, q);  // q = -A p
+    const std::array<double, NC> pq = dot(p, q);
+    for (int c = 0; c < NC; ++c) {
+      const float alpha = pq[c] < 0 ? float(-rz[c] / pq[c]) : 0.0f;
+      float *xc = &x[c * n], *rc = &r[c * n];
+      const float *pc = &p[c * n], *qc = &q[c * n];
+      for (size_t i = 0; i < n; ++i) {
+        xc[i] += alpha * pc[i];
+        rc[i] += alpha * qc[i];
+      }
+    }
+    std::array<double, NC> norms = dot(r, r);
+    for (double& v : norms) v = std::sqrt(v);
+    ++st.cycles;
+    const double prev = rel;
+    rel = relative(norms);
+    st.residual_history.push_back(rel);
+    if (rel <= tolerance || (rel > 0.9 * prev && rel < 1e-4)) {
+      // The recursive residual drifts from the true one in float32: confirm with the true
+      // residual; carry on from it (restarting the directions) unless float32 is exhausted.
+      residual_of(0, &r0, x, r);
+      std::array<double, NC> true_norms = dot(r, r);
+      for (double& v : true_norms) v = std::sqrt(v);
+      rel = relative(true_norms);
+      st.residual_history.back() = rel;
+      if (rel > 0.5 * last_true && rel > tolerance) break;  // float32 floor
+      last_true = rel;
+      std::fill(rz_old.begin(), rz_old.end(), 0.0);
+    }
+  }
+  L.e = x;
+  return rel;
+}
+
+template <int NC>
+double Multigrid<NC>::relative(const std::array<double, NC>& norms) const {
+  // A channel whose right-hand side vanishes (say, no blue anywhere) is measured against the
+  // largest channel instead, so that a warm start cannot keep it from ever converging.
+  const double largest = *std::max_element(b_norm_.begin(), b_norm_.end());
+  double worst = 0;
+  for (int c = 0; c < NC; ++c) {
+    const double scale = b_norm_[c] > 0 ? b_norm_[c] : (largest > 0 ? largest : 1.0);
+    worst = std::max(worst, norms[c] / scale);
+  }
+  return worst;
+}
+
+template <int NC>
+void Multigrid<NC>::setup() {
+  const Problem& p = problem_;
+  // Levels: halve until the coarsest has at most 64 points (it is solved exactly).
+  int w = p.width, h = p.height, count = 1;
+  while (size_t(w) * size_t(h) > 64 && (options_.max_levels <= 0 || count < options_.max_levels)) {
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+    ++count;
+  }
+  levels_.resize(count);
+  prolong_.resize(count - 1);
+  build_finest(fixed_);
+  for (int l = 0; l + 1 < count; ++l) build_coarse(l);
+  build_coarsest();
+  for (Level& L : levels_)
+    for (auto* v : {&L.e, &L.rhs, &L.res}) v->assign(L.padded() * NC, 0.0f);
+}
+
+// r = b - A u on the free pixels of the finest level, in double precision, where b = -g plus the
+// fixed neighbours' values and u holds every pixel (fixed ones at their values). Returns the
+// per-channel norms of r; r_padded receives it in the levels' float layout.
+template <int NC>
+std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<double>& u,
+                                                      std::vector<float>& r_padded) const {
+  const Problem& p = problem_;
+  const Level& F = levels_[0];
+  const size_t np = p.pixel_count(), nf = F.padded();
+  r_padded.assign(nf * NC, 0.0f);
+  std::vector<double> rows(size_t(p.height) * NC, 0.0);
+  for_rows(p.height, p.width * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < p.width; ++x) {
+        const size_t i = p.index(x, y), k = F.at(x, y);
+        if (fixed_[i]) continue;
+        const bool open[4] = {(p.links[i] & kOpenEast) != 0,
+                              x > 0 && (p.links[i - 1] & kOpenEast) != 0,
+                              (p.links[i] & kOpenSouth) != 0,
+                              y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
+        const size_t nb[4] = {i + 1, i - 1, i + p.width, i - p.width};
+        for (int c = 0; c < NC; ++c) {
+          const double* uc = &u[c * np];
+          double r = p.rhs.empty() ? 0.0 : -double(p.rhs[c * np + i]);
+          for (int q = 0; q < 4; ++q)
+            if (open[q]) r += uc[nb[q]] - uc[i];
+          r_padded[c * nf + k] = float(r);
+          rows[size_t(y) * NC + c] += r * r;
+        }
+      }
+  });
+  std::array<double, NC> norms{};
+  for (int y = 0; y < p.height; ++y)
+    for (int c = 0; c < NC; ++c) norms[c] += rows[size_t(y) * NC + c];
+  for (double& v : norms) v = std::sqrt(v);
+  return norms;
+}
+
+// Solves A e = r0 (float32) into levels_[0].e: FMG, then CG-accelerated or plain V-cycles until
+// the residual relative to b_norm_ is below `tolerance` or float32 precision is exhausted.
+template <int NC>
+double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tolerance,
+                                       SolveStats& st) {
+  const int count = int(levels_.size());
+  Level& F = levels_[0];
+  F.rhs = r0;
+  std::fill(F.e.begin(), F.e.end(), 0.0f);
+  double rel = relative(residual_norms(0));
+  if (rel > tolerance && options_.full_multigrid) {
+    // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
+    // level's answer as the next finer one's start and run one V-cycle there.
+    for (int l = 0; l + 1 < count; ++l) {
+      levels_[l].res = levels_[l].rhs;
+      restrict_residual(l);
+    }
+    solve_coarsest();
+    for (int l = count - 2; l >= 0; --l) {
+      std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);
+      prolongate_add(l);
+      vcycle(l);
+    }
+    rel = relative(residual_norms(0));
+    st.residual_history.push_back(rel);
+  }
+  if (options_.krylov) return conjugate_gradient(r0, rel, tolerance, st);
+  while (rel > tolerance && st.cycles < options_.max_cycles) {
+    vcycle(0);
+    ++st.cycles;
+    const double prev = rel;
+    rel = relative(residual_norms(0));
+    st.residual_history.push_back(rel);
+    if (rel > 0.9 * prev && rel < 1e-4) break;  // float32 floor
+  }
+  return rel;
+}
+
+template <int NC>
+Solution Multigrid<NC>::run(const std::vector<float>* guess) {
+  const Problem& p = problem_;
+  const auto t_setup = Clock::now();
+  Solution out;
+  out.width = p.width;
+  out.height = p.height;
+  out.channels = NC;
+  SolveStats& st = out.stats;
+  st.floating_pixels = mark_fixed(fixed_);
+  setup();
+  st.levels = int(levels_.size());
+
+  // u: fixed values on fixed pixels, the guess (or 0) on free ones; unreachable pixels are 0.
+  const size_t np = p.pixel_count();
+  std::vector<double> u(np * NC, 0.0);
+  for (int c = 0; c < NC; ++c)
+    for (size_t i = 0; i < np; ++i)
+      u[c * np + i] = p.fixed[i] ? p.value[c * np + i]
+                                 : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
+  // The scale of relative residuals is the right-hand side b of the free pixels' system.
+  {
+    std::vector<double> zero_free(u);
+    for (int c = 0; c < NC; ++c)
+      for (size_t i = 0; i < np; ++i)
+        if (!fixed_[i]) zero_free[c * np + i] = 0.0;
+    std::vector<float> scratch;
+    b_norm_ = residual_double(zero_free, scratch);
+  }
+  std::vector<float> r;
+  double rel = relative(residual_double(u, r));
+  st.initial_residual = rel;
+  st.setup_ms = ms_since(t_setup);
+
+  // Mixed precision: the float32 solve reaches a relative residual of about 1e-6. When a tighter
+  // tolerance is asked for, the residual of the double-precision answer is solved for again
+  // (iterative refinement); each round gains about five digits.
+  const auto t_solve = Clock::now();
+  const Level& F = levels_[0];
+  const size_t nf = F.padded();
+  for (int round = 0; round < 3 && rel > options_.tolerance; ++round) {
+    solve_correction(r, options_.tolerance, st);
+    for (int c = 0; c < NC; ++c)
+      for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x)
+          u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
+    const double prev = rel;
+    rel = relative(residual_double(u, r));
+    if (rel > 0.5 * prev) break;
+  }
+  st.final_residual = rel;
+  st.converged = rel <= options_.tolerance;
+  out.planes.assign(u.begin(), u.end());
+  st.solve_ms = ms_since(t_solve);
+  return out;
+}
+
+}  // namespace
+
+Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
+                         const std::vector<float>* initial_guess) {
+  check_problem(problem);
+  if (initial_guess && initial_guess->size() != problem.pixel_count() * problem.channels)
+    throw std::invalid_argument("solver: initial guess has the wrong size");
+  switch (problem.channels) {
+    case 1: return Multigrid<1>(problem, options).run(initial_guess);
+    case 2: return Multigrid<2>(problem, options).run(initial_guess);
+    case 3: return Multigrid<3>(problem, options).run(initial_guess);
+    default: return Multigrid<4>(problem, options).run(initial_guess);
+  }
+}
+
+}  // namespace wisp::diffusion

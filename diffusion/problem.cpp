@@ -1,0 +1,98 @@
+// Problem construction helpers (see problem.hpp).
+#include "diffusion/problem.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wisp::diffusion {
+
+Problem make_open_problem(int width, int height, int channels) {
+  Problem p;
+  p.width = width;
+  p.height = height;
+  p.channels = channels;
+  const size_t n = p.pixel_count();
+  p.fixed.assign(n, 0);
+  p.links.assign(n, 0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      p.links[p.index(x, y)] =
+          std::uint8_t((x + 1 < width ? kOpenEast : 0) | (y + 1 < height ? kOpenSouth : 0));
+  p.value.assign(n * channels, 0.0f);
+  return p;
+}
+
+void add_gradient_field(Problem& p, const std::vector<float>& wx, const std::vector<float>& wy) {
+  const size_t n = p.pixel_count();
+  if (wx.size() != n * p.channels || wy.size() != n * p.channels)
+    throw std::invalid_argument("gradient field: expected " + std::to_string(p.channels) +
+                                " planes of " + std::to_string(n) + " values");
+  if (p.rhs.empty()) p.rhs.assign(n * p.channels, 0.0f);
+  for (int c = 0; c < p.channels; ++c) {
+    float* g = p.rhs.data() + c * n;
+    const float* gx = wx.data() + c * n;
+    const float* gy = wy.data() + c * n;
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x) {
+        const size_t i = p.index(x, y);
+        if (p.links[i] & kOpenEast) {
+          g[i] += gx[i];
+          g[i + 1] -= gx[i];
+        }
+        if (p.links[i] & kOpenSouth) {
+          g[i] += gy[i];
+          g[i + p.width] -= gy[i];
+        }
+      }
+  }
+}
+
+std::vector<std::uint8_t> reached_from_fixed(const Problem& p) {
+  const int W = p.width, H = p.height;
+  std::vector<std::uint8_t> reached(p.fixed);
+  std::vector<int> stack;
+  for (size_t i = 0; i < p.pixel_count(); ++i)
+    if (p.fixed[i]) stack.push_back(int(i));
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    const int x = i % W, y = i / W;
+    const auto visit = [&](int j, bool open) {
+      if (open && !reached[j]) {
+        reached[j] = 1;
+        stack.push_back(j);
+      }
+    };
+    visit(i + 1, x + 1 < W && (p.links[i] & kOpenEast));
+    visit(i - 1, x > 0 && (p.links[i - 1] & kOpenEast));
+    visit(i + W, y + 1 < H && (p.links[i] & kOpenSouth));
+    visit(i - W, y > 0 && (p.links[i - W] & kOpenSouth));
+  }
+  return reached;
+}
+
+void check_problem(const Problem& p) {
+  if (p.width <= 0 || p.height <= 0)
+    throw std::invalid_argument("problem: image size must be positive, got " +
+                                std::to_string(p.width) + "x" + std::to_string(p.height));
+  if (p.channels < 1 || p.channels > 4)
+    throw std::invalid_argument("problem: channels must be 1 to 4");
+  const size_t n = p.pixel_count();
+  if (p.fixed.size() != n || p.links.size() != n || p.value.size() != n * p.channels ||
+      (!p.rhs.empty() && p.rhs.size() != n * p.channels))
+    throw std::invalid_argument("problem: array sizes do not match the image size");
+  for (float v : p.value)
+    if (!std::isfinite(v)) throw std::invalid_argument("problem: a fixed value is not finite");
+  for (float v : p.rhs)
+    if (!std::isfinite(v)) throw std::invalid_argument("problem: a right-hand side is not finite");
+  for (int y = 0; y < p.height; ++y) {
+    if ((p.links[p.index(p.width - 1, y)] & kOpenEast) != 0)
+      throw std::invalid_argument("problem: a link leaves the image on the east border");
+  }
+  for (int x = 0; x < p.width; ++x)
+    if ((p.links[p.index(x, p.height - 1)] & kOpenSouth) != 0)
+      throw std::invalid_argument("problem: a link leaves the image on the south border");
+}
+
+}  // namespace wisp::diffusion
