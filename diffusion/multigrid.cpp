@@ -14,6 +14,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace wisp::diffusion {
@@ -68,6 +69,7 @@ class Multigrid {
       : problem_(problem), options_(options) {}
 
   Solution run(const std::vector<float>* initial_guess);
+  std::vector<double> factors(int cycles, unsigned seed);
 
  private:
   const Problem& problem_;
@@ -639,18 +641,18 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
     std::array<double, NC> norms = dot(r, r);
     for (double& v : norms) v = std::sqrt(v);
     ++st.cycles;
-    const double prev = rel;
     rel = relative(norms);
     st.residual_history.push_back(rel);
-    if (rel <= tolerance || (rel > 0.9 * prev && rel < 1e-4)) {
-      // The recursive residual drifts from the true one in float32: confirm with the true
-      // residual; carry on from it (restarting the directions) unless float32 is exhausted.
+    // The recursive residual drifts from the true one in float32: when it claims convergence
+    // (or has not improved for a while), confirm with the true residual and carry on from it,
+    // restarting the directions, unless float32 precision is exhausted.
+    if (rel <= tolerance || st.cycles % 16 == 0) {
       residual_of(0, &r0, x, r);
       std::array<double, NC> true_norms = dot(r, r);
       for (double& v : true_norms) v = std::sqrt(v);
       rel = relative(true_norms);
       st.residual_history.back() = rel;
-      if (rel > 0.5 * last_true && rel > tolerance) break;  // float32 floor
+      if (rel > tolerance && rel > 0.5 * last_true && rel < 1e-4) break;  // float32 floor
       last_true = rel;
       std::fill(rz_old.begin(), rz_old.end(), 0.0);
     }
@@ -824,7 +826,43 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
   return out;
 }
 
+template <int NC>
+std::vector<double> Multigrid<NC>::factors(int cycles, unsigned seed) {
+  mark_fixed(fixed_);
+  setup();
+  Level& F = levels_[0];
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int y = 0; y < F.h; ++y)
+    for (int x = 0; x < F.w; ++x)
+      for (int c = 0; c < NC; ++c)
+        if (F.alive[F.at(x, y)]) F.e[c * F.padded() + F.at(x, y)] = unit(rng);
+  b_norm_.fill(1.0);
+  std::fill(F.rhs.begin(), F.rhs.end(), 0.0f);
+  std::vector<double> out;
+  double before = relative(residual_norms(0));
+  for (int k = 0; k < cycles && before > 0; ++k) {
+    vcycle(0);
+    const double after = relative(residual_norms(0));
+    out.push_back(after / before);
+    // Rescale the error to unit residual so that float32 round-off never dominates.
+    for (float& v : F.e) v = float(v / after);
+    before = relative(residual_norms(0));
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
+                                           const SolverOptions& options, unsigned seed) {
+  check_problem(problem);
+  Problem p = problem;
+  p.channels = 1;
+  p.value.assign(p.pixel_count(), 0.0f);
+  p.rhs.clear();
+  return Multigrid<1>(p, options).factors(cycles, seed);
+}
 
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
                          const std::vector<float>* initial_guess) {

@@ -32,7 +32,7 @@ namespace wisp::diffusion {
 
 struct SolverOptions {
   double tolerance = 1e-5;  // relative residual per channel
-  int max_cycles = 60;      // V-cycles after the FMG start
+  int max_cycles = 100;     // V-cycles (or CG iterations) after the FMG start
   int pre_smooth = 2;
   int post_smooth = 2;
   bool full_multigrid = true;
@@ -62,6 +62,14 @@ struct Solution {
   std::vector<float> planes;  // channels planes of width*height
   SolveStats stats;
 };
+
+// Asymptotic convergence factors of the plain V-cycle on `problem`: V-cycles are applied to the
+// error equation A e = 0 from a seeded random start, the error rescaled after every cycle (so
+// float32 precision never runs out), and the factor ||r_k+1|| / ||r_k|| of each cycle returned.
+// This is how the rate of a multigrid cycle is measured (Trottenberg et al., Multigrid, 2001).
+std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
+                                           const SolverOptions& options = {},
+                                           unsigned seed = 1);
 
 // Solves `problem`. `initial_guess`, when given (a warm start, e.g. the previous frame), holds
 // channels planes of W*H; its values at fixed pixels are ignored.

@@ -1,12 +1,20 @@
-// Accuracy and convergence of the multigrid solver against exact answers.
+// The multigrid solver against exact answers: the exact discrete solution (Eigen LDLT),
+// manufactured smooth solutions (second-order accuracy), the maximum principle, and the
+// convergence rate of its cycles.
+#include <tbb/global_control.h>
+
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <functional>
 
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
 #include "diffusion/reference.hpp"
+#include "io/drawing_xml.hpp"
 #include "scenes.hpp"
 
 using namespace wisp::diffusion;
+using wisp::test::circle;
 
 namespace {
 
@@ -27,6 +35,56 @@ Problem random_layout(int size, unsigned seed, int curves, bool neumann) {
   return rasterize(cs, size, size);
 }
 
+double geometric_mean(const std::vector<double>& v) {
+  double log_sum = 0;
+  for (double x : v) log_sum += std::log(x);
+  return std::exp(log_sum / v.size());
+}
+
+// Solves on the unit square sampled by n x n pixel centres, with the border pixels fixed to the
+// exact solution and g = h^2 * laplacian. Returns the largest error over the free pixels.
+double manufactured_error(int n, const std::function<double(double, double)>& u,
+                          const std::function<double(double, double)>& laplacian) {
+  Problem p = make_open_problem(n, n, 1);
+  const double h = 1.0 / n;
+  if (laplacian) p.rhs.assign(p.pixel_count(), 0.0f);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double px = (x + 0.5) * h, py = (y + 0.5) * h;
+      const size_t i = p.index(x, y);
+      if (x == 0 || y == 0 || x == n - 1 || y == n - 1) {
+        p.fixed[i] = 1;
+        p.value[i] = float(u(px, py));
+      } else if (laplacian) {
+        p.rhs[i] = float(h * h * laplacian(px, py));
+      }
+    }
+  SolverOptions opt;
+  opt.tolerance = 1e-11;
+  const Solution s = solve_multigrid(p, opt);
+  REQUIRE(s.stats.converged);
+  double err = 0;
+  for (int y = 1; y < n - 1; ++y)
+    for (int x = 1; x < n - 1; ++x)
+      err = std::max(err, std::abs(s.planes[p.index(x, y)] - u((x + 0.5) * h, (y + 0.5) * h)));
+  return err;
+}
+
+void check_second_order(const std::function<double(double, double)>& u,
+                        const std::function<double(double, double)>& laplacian) {
+  double previous = 0;
+  for (int n : {32, 64, 128, 256}) {
+    const double err = manufactured_error(n, u, laplacian);
+    if (previous > 0) {
+      const double order = std::log2(previous / err);
+      INFO("n = " << n << ": error " << err << ", previous " << previous);
+      CHECK(order >= 1.9);
+      CHECK(order <= 2.1);
+    }
+    previous = err;
+  }
+}
+
 }  // namespace
 
 TEST_CASE("multigrid matches the exact discrete solution on random curve layouts",
@@ -35,12 +93,199 @@ TEST_CASE("multigrid matches the exact discrete solution on random curve layouts
     for (unsigned seed : {1u, 2u, 3u}) {
       const Problem p = random_layout(size, seed * 7 + size, 6, seed == 3);
       SolverOptions opt;
-      opt.tolerance = 1e-6;
+      opt.tolerance = 1e-7;
       const Solution mg = solve_multigrid(p, opt);
       const ReferenceResult exact = solve_reference(p, ReferenceMethod::SimplicialLDLT);
       INFO("size " << size << " seed " << seed << " cycles " << mg.stats.cycles << " residual "
                    << mg.stats.final_residual);
+      CHECK(mg.stats.converged);
       CHECK(max_abs_difference(mg.planes, exact.planes) <= 1e-4f);
     }
   }
+}
+
+TEST_CASE("a harmonic function is reproduced with second-order accuracy", "[multigrid]") {
+  const double pi = 3.14159265358979;
+  SECTION("exp(pi x) sin(pi y)") {
+    check_second_order([&](double x, double y) { return std::exp(pi * x) * std::sin(pi * y); },
+                       nullptr);
+  }
+  SECTION("Re (x + iy)^4") {
+    check_second_order(
+        [](double x, double y) { return x * x * x * x - 6 * x * x * y * y + y * y * y * y; },
+        nullptr);
+  }
+}
+
+TEST_CASE("a Poisson problem (laplacian = div w) is solved with second-order accuracy",
+          "[multigrid]") {
+  check_second_order([](double x, double y) { return std::sin(3 * x) * std::exp(y); },
+                     [](double x, double y) { return -8 * std::sin(3 * x) * std::exp(y); });
+}
+
+TEST_CASE("V-cycles reduce the residual at least fivefold per cycle on thin curves",
+          "[multigrid][rate]") {
+  // Sixty wisp-like closed shapes between 0.7 and 3 pixels wide, plus long open curves.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<DiffusionCurve> curves;
+  for (int k = 0; k < 60; ++k) {
+    const double cx = 20 + 216 * unit(rng), cy = 20 + 216 * unit(rng);
+    const double len = 10 + 30 * unit(rng), width = 0.7 + 2.3 * unit(rng);
+    const double a = 6.283 * unit(rng);
+    const Eigen::Vector2d d(std::cos(a), std::sin(a)), nrm(-d.y(), d.x());
+    const Eigen::Vector2d c(cx, cy);
+    DiffusionCurve w;
+    // Root -> tip along one side, tip -> root along the other: a closed thin wisp.
+    w.points = {c - len * d,
+                c - len * d + width * nrm,
+                c + len * d + width * nrm,
+                c + len * d,
+                c + len * d - width * nrm,
+                c - len * d - width * nrm,
+                c - len * d};
+    w.left = {{0, Color(0.8f, 0.6f, 0.3f)}, {1, Color(0.6f, 0.4f, 0.2f)}};
+    w.right = {{0, Color(0.1f, 0.1f, 0.1f)}, {1, Color(0.2f, 0.2f, 0.2f)}};
+    curves.push_back(w);
+  }
+  for (int k = 0; k < 8; ++k) curves.push_back(wisp::test::random_curve(rng, 256, 4));
+  const Problem p = rasterize(curves, 256, 256);
+  SolverOptions opt;
+  opt.krylov = false;
+  const std::vector<double> f = measure_vcycle_factors(p, 10, opt);
+  REQUIRE(f.size() == 10);
+  INFO("mean factor " << geometric_mean(f));
+  CHECK(geometric_mean(f) <= 0.2);
+}
+
+TEST_CASE("V-cycles reduce the residual at least fivefold per cycle across Neumann barriers",
+          "[multigrid][rate]") {
+  const auto line = [](double x0, double y0, double x1, double y1, Boundary left,
+                       Boundary right) {
+    DiffusionCurve c;
+    const Eigen::Vector2d a(x0, y0), b(x1, y1);
+    c.points = {a, a + (b - a) / 3, a + 2 * (b - a) / 3, b};
+    c.left = {{0, Color(1, 0, 0)}, {1, Color(0, 1, 0)}};
+    c.right = {{0, Color(0, 0, 1)}, {1, Color(1, 1, 0)}};
+    c.left_boundary = left;
+    c.right_boundary = right;
+    return c;
+  };
+  const Boundary D = Boundary::Dirichlet, N = Boundary::Neumann;
+  // Barriers that end inside the image (crack tips), a half-insulated circle that leaves the
+  // whole outside anchored by one short curve, and a barrier across most of the image.
+  auto ring = circle(128, 128, 60, Color(1, 0, 0), Color(0, 0, 1));
+  ring.right_boundary = N;
+  const Problem p = rasterize({line(20, 20, 60, 30, D, D), line(30, 230, 230, 200, N, N),
+                               line(200, 10, 240, 120, D, N), line(128, 0, 128, 40, N, N), ring},
+                              256, 256);
+  SolverOptions opt;
+  opt.krylov = false;
+  const std::vector<double> f = measure_vcycle_factors(p, 10, opt);
+  INFO("mean factor " << geometric_mean(f));
+  CHECK(geometric_mean(f) <= 0.2);
+}
+
+TEST_CASE("conjugate-gradient acceleration converges where barriers nearly seal regions",
+          "[multigrid]") {
+  // small-usvg's drape: long light beams between insulating curves that taper to a point. No
+  // coarse grid point lies inside a beam for long, so plain V-cycles crawl; CG must not.
+  const auto file = wisp::io::read_drawing_xml(WISP_SOURCE_DIR "/data/drawings/external/drape.xml");
+  std::vector<DiffusionCurve> curves = file.drawing.curves;
+  for (auto& c : curves)
+    for (auto& q : c.points) q *= 256.0 / file.drawing.width;
+  const Problem p = rasterize(curves, 256, 256);
+  SolverOptions plain;
+  plain.krylov = false;
+  const Solution slow = solve_multigrid(p, plain);
+  const Solution s = solve_multigrid(p);
+  CHECK(s.stats.converged);
+  CHECK(s.stats.cycles <= 30);
+  INFO("plain V-cycles: " << slow.stats.cycles << ", accelerated: " << s.stats.cycles);
+  CHECK(slow.stats.cycles > 2 * s.stats.cycles);  // the hard case it is
+}
+
+TEST_CASE("the solution obeys the maximum principle", "[multigrid]") {
+  const Problem p = random_layout(128, 99, 8, true);
+  const Solution s = solve_multigrid(p);
+  const size_t n = p.pixel_count();
+  const auto defined = reached_from_fixed(p);  // sealed pockets have no value (0)
+  for (int c = 0; c < 3; ++c) {
+    float lo = 1e9f, hi = -1e9f;
+    for (size_t i = 0; i < n; ++i)
+      if (p.fixed[i]) {
+        lo = std::min(lo, p.value[c * n + i]);
+        hi = std::max(hi, p.value[c * n + i]);
+      }
+    for (size_t i = 0; i < n; ++i) {
+      if (!defined[i]) continue;
+      CHECK(s.planes[c * n + i] >= lo - 1e-5f);
+      CHECK(s.planes[c * n + i] <= hi + 1e-5f);
+    }
+  }
+}
+
+TEST_CASE("a closed circle with one inside colour is that colour everywhere inside",
+          "[multigrid]") {
+  const Color inside(0.2f, 0.5f, 0.8f);
+  std::mt19937 rng(5);
+  std::vector<DiffusionCurve> curves = {circle(100, 90, 45, inside, Color(0.9f, 0.1f, 0.1f))};
+  curves[0].right = {{0, Color(1, 0, 0)}, {0.5, Color(0, 1, 0)}, {1, Color(0, 0, 1)}};
+  for (int k = 0; k < 4; ++k) curves.push_back(wisp::test::random_curve(rng, 200, 2));
+  curves.resize(1);  // the circle alone decides its inside
+  const Problem p = rasterize(curves, 200, 200);
+  const Solution s = solve_multigrid(p);
+  const size_t n = p.pixel_count();
+  int checked = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x) {
+      if (std::hypot(x + 0.5 - 100, y + 0.5 - 90) >= 44) continue;
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(s.planes[c * n + p.index(x, y)] - inside[c]) <= 1e-3f);
+      ++checked;
+    }
+  CHECK(checked > 5000);
+}
+
+TEST_CASE("the result does not depend on the number of threads", "[multigrid]") {
+  const Problem p = random_layout(192, 42, 8, true);
+  std::vector<float> one, two;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = solve_multigrid(p).planes;
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    two = solve_multigrid(p).planes;
+  }
+  CHECK(one == two);
+}
+
+TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess few",
+          "[multigrid]") {
+  const Problem p = random_layout(128, 17, 6, false);
+  const Solution cold = solve_multigrid(p);
+  const Solution exact = solve_multigrid(p, [] {
+    SolverOptions o;
+    o.tolerance = 1e-9;
+    return o;
+  }());
+  const Solution warm = solve_multigrid(p, {}, &exact.planes);
+  CHECK(warm.stats.cycles == 0);
+  CHECK(warm.stats.initial_residual <= 1e-5);
+  std::vector<float> nearby = exact.planes;
+  for (size_t i = 0; i < nearby.size(); i += 7) nearby[i] += 0.01f;
+  const Solution near = solve_multigrid(p, {}, &nearby);
+  CHECK(near.stats.converged);
+  CHECK(max_abs_difference(near.planes, cold.planes) <= 1e-4f);
+}
+
+TEST_CASE("a region sealed by insulating curves has no colour and is reported",
+          "[multigrid]") {
+  auto sealed = circle(32, 32, 12, Color(1, 0, 0), Color(0, 0, 1));
+  sealed.left_boundary = Boundary::Neumann;  // the inside gets nothing
+  const Problem p = rasterize({sealed}, 64, 64);
+  const Solution s = solve_multigrid(p);
+  CHECK(s.stats.floating_pixels > 300);
+  CHECK(s.planes[p.index(32, 32)] == 0.0f);
+  CHECK(s.planes[2 * p.pixel_count() + p.index(2, 2)] == Approx(1.0f).margin(1e-4));
 }

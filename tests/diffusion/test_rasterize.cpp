@@ -1,13 +1,64 @@
-// Rasterizer: sides, cut links, no leaks.
+// Rasterizer: every fixed pixel gets the colour of the side of the curve it lies on, crossed
+// links are cut so that no colour leaks through a curve, Neumann sides fix nothing.
 #include <catch2/catch.hpp>
+#include <queue>
 
+#include "diffusion/bezier.hpp"
+#include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
 #include "scenes.hpp"
 
 using namespace wisp::diffusion;
+using wisp::test::circle;
 
-TEST_CASE("a circle fixes its inside colour inside and its outside colour outside", "[rasterize]") {
-  const auto c = wisp::test::circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
+namespace {
+
+// Signed side of point q relative to the flattened curve: > 0 on the left, (-d.y, d.x).
+double side_of(const DiffusionCurve& c, const Eigen::Vector2d& q) {
+  const auto poly = flatten_path(c.points, 0.001);
+  double best = 1e18, side = 0;
+  for (size_t k = 1; k < poly.size(); ++k) {
+    const Eigen::Vector2d a = poly[k - 1].p, d = poly[k].p - a;
+    const double len2 = d.squaredNorm();
+    const double s = len2 > 0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const double dist = (a + s * d - q).norm();
+    if (dist < best) {
+      best = dist;
+      side = Eigen::Vector2d(-d.y(), d.x()).dot(q - a);
+    }
+  }
+  return side;
+}
+
+// Pixels reachable from (x,y) through open links.
+std::vector<std::uint8_t> flood(const Problem& p, int x, int y) {
+  std::vector<std::uint8_t> seen(p.pixel_count(), 0);
+  std::queue<int> q;
+  q.push(int(p.index(x, y)));
+  seen[p.index(x, y)] = 1;
+  while (!q.empty()) {
+    const int i = q.front();
+    q.pop();
+    const int px = i % p.width, py = i / p.width;
+    const auto go = [&](int j, bool open) {
+      if (open && !seen[j]) {
+        seen[j] = 1;
+        q.push(j);
+      }
+    };
+    go(i + 1, px + 1 < p.width && (p.links[i] & kOpenEast));
+    go(i - 1, px > 0 && (p.links[i - 1] & kOpenEast));
+    go(i + p.width, py + 1 < p.height && (p.links[i] & kOpenSouth));
+    go(i - p.width, py > 0 && (p.links[i - p.width] & kOpenSouth));
+  }
+  return seen;
+}
+
+}  // namespace
+
+TEST_CASE("a circle fixes its inside colour inside and its outside colour outside",
+          "[rasterize]") {
+  const auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
   const Problem p = rasterize({c}, 64, 64);
   const size_t n = p.pixel_count();
   int inside = 0, outside = 0;
@@ -15,7 +66,9 @@ TEST_CASE("a circle fixes its inside colour inside and its outside colour outsid
     for (int x = 0; x < 64; ++x) {
       const size_t i = p.index(x, y);
       if (!p.fixed[i]) continue;
+      // Only pixels next to the curve are fixed.
       const double r = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
+      CHECK(std::abs(r - 10) < 1.0);
       if (r < 10) {
         CHECK(p.value[i] == 1.0f);
         ++inside;
@@ -26,4 +79,174 @@ TEST_CASE("a circle fixes its inside colour inside and its outside colour outsid
     }
   CHECK(inside > 40);
   CHECK(outside > 40);
+}
+
+TEST_CASE("every fixed pixel lies on the side whose colour it took, for crossing curves",
+          "[rasterize]") {
+  // Straight segments and circles at random, crossing each other many times (none crosses
+  // itself, so "the side of curve k" is well defined everywhere). Each side of each curve has
+  // its own colour: (curve index / 10, 1 for left or 0 for right, 0.5).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pos(5, 91), rad(5, 30);
+  std::vector<DiffusionCurve> curves;
+  for (int k = 0; k < 8; ++k) {
+    DiffusionCurve c;
+    if (k % 2) {
+      c = circle(pos(rng), pos(rng), rad(rng), Color(0, 0, 0), Color(0, 0, 0));
+    } else {
+      const Eigen::Vector2d a(pos(rng), pos(rng)), b(pos(rng), pos(rng));
+      c.points = {a, a + (b - a) / 3, a + 2 * (b - a) / 3, b};
+    }
+    c.left = {{0, Color(k / 10.0f, 1.0f, 0.5f)}};
+    c.right = {{0, Color(k / 10.0f, 0.0f, 0.5f)}};
+    curves.push_back(c);
+  }
+  const Problem p = rasterize(curves, 96, 96);
+  const size_t n = p.pixel_count();
+  int fixed = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const size_t i = p.index(x, y);
+      if (!p.fixed[i]) continue;
+      ++fixed;
+      const int k = int(std::lround(p.value[i] * 10));
+      const bool left = p.value[n + i] > 0.5f;
+      REQUIRE(k >= 0);
+      REQUIRE(k < 8);
+      const double s = side_of(curves[k], Eigen::Vector2d(x + 0.5, y + 0.5));
+      INFO("pixel " << x << "," << y << " curve " << k);
+      CHECK((left ? s >= 0 : s <= 0));
+    }
+  CHECK(fixed > 300);
+}
+
+TEST_CASE("a closed curve cuts every link between its inside and its outside",
+          "[rasterize]") {
+  // A thin wavy closed wisp (about 1.2 pixels wide in places): flooding from outside never
+  // reaches a pixel whose centre is inside.
+  DiffusionCurve w;
+  w.points = {{10, 30}, {30, 10},   {60, 50},   {90, 30},  {91.2, 31},
+              {61, 51.2}, {31, 11.2}, {10, 30}};
+  w.points.resize(7);
+  w.points.back() = w.points.front();
+  w.left = {{0, Color(1, 0, 0)}};
+  w.right = {{0, Color(0, 0, 1)}};
+  const Problem p = rasterize({w}, 100, 60);
+  const auto outside = flood(p, 0, 0);
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 100; ++x) {
+      const Eigen::Vector2d q(x + 0.5, y + 0.5);
+      // The wisp runs root -> tip above and back below: inside is on its right side.
+      if (outside[p.index(x, y)]) CHECK(!(side_of(w, q) < -0.05 && p.fixed[p.index(x, y)] &&
+                                          p.value[p.index(x, y)] == 1.0f));
+    }
+  // And no inside (red) colour anywhere reachable from the outside through open links.
+  const size_t n = p.pixel_count();
+  for (size_t i = 0; i < n; ++i)
+    if (outside[i] && p.fixed[i]) CHECK(p.value[2 * n + i] == 1.0f);
+}
+
+TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
+  // Lenses 0.3 pixels thick, root -> tip along one side and back along the other, so that
+  // their inside is on the left of travel. A pixel may take the inside colour only if its
+  // centre really is inside; everywhere else both sides show the outside colour.
+  const auto lens = [](std::vector<Eigen::Vector2d> top, std::vector<Eigen::Vector2d> bottom) {
+    DiffusionCurve w;
+    w.points = {top[0], top[1], top[2], top[3], bottom[2], bottom[1], top[0]};
+    w.left = {{0, Color(0, 0, 1)}};   // inside: blue
+    w.right = {{0, Color(1, 0, 0)}};  // outside: red
+    return w;
+  };
+  SECTION("between two rows of pixel centres: no centre inside, two crossings per link") {
+    const DiffusionCurve w = lens({{5, 20.75}, {20, 20.6}, {40, 20.6}, {55, 20.75}},
+                                  {{5, 20.75}, {20, 20.9}, {40, 20.9}, {55, 20.75}});
+    const Problem p = rasterize({w}, 60, 40);
+    const size_t n = p.pixel_count();
+    int above = 0, below = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (p.fixed[i]) {
+        CHECK(p.value[2 * n + i] == 0.0f);  // never the inside's blue
+        (i / 60 == 20 ? above : below)++;
+      }
+    CHECK(above >= 45);  // the outside colour on both sides all along
+    CHECK(below >= 45);
+  }
+  SECTION("slanted: the inside colour only at centres that are inside") {
+    const DiffusionCurve w = lens({{5, 19.85}, {20, 9.85}, {40, 29.85}, {55, 20}},
+                                  {{5, 19.85}, {20, 10.15}, {40, 30.15}, {55, 20}});
+    const Problem p = rasterize({w}, 60, 40);
+    const size_t n = p.pixel_count();
+    // Inside test by the winding number of the finely flattened outline.
+    const auto poly = flatten_path(w.points, 1e-4);
+    const auto inside = [&](const Eigen::Vector2d& q) {
+      int wn = 0;
+      for (size_t k = 1; k < poly.size(); ++k) {
+        const Eigen::Vector2d a = poly[k - 1].p, b = poly[k].p;
+        const double cr = (b.x() - a.x()) * (q.y() - a.y()) - (q.x() - a.x()) * (b.y() - a.y());
+        if (a.y() <= q.y() && b.y() > q.y() && cr > 0) ++wn;
+        if (a.y() > q.y() && b.y() <= q.y() && cr < 0) --wn;
+      }
+      return wn != 0;
+    };
+    int blue = 0, red = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (p.fixed[i]) {
+        const bool is_blue = p.value[2 * n + i] == 1.0f;
+        CHECK(is_blue == inside(Eigen::Vector2d(i % 60 + 0.5, i / 60 + 0.5)));
+        (is_blue ? blue : red)++;
+      }
+    CHECK(red > 60);
+  }
+}
+
+TEST_CASE("Neumann sides fix nothing but still cut", "[rasterize]") {
+  auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
+  c.right_boundary = Boundary::Neumann;
+  const Problem p = rasterize({c}, 64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (p.fixed[p.index(x, y)]) CHECK(std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 10);
+  const auto outside = flood(p, 0, 0);
+  CHECK(!outside[p.index(32, 32)]);
+  for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!(outside[i] && p.fixed[i]));
+}
+
+TEST_CASE("only the active parameter intervals constrain", "[rasterize]") {
+  auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
+  c.active = {{0.0, 0.5}};  // the lower half of the circle (angles 0..pi, y down)
+  const Problem p = rasterize({c}, 64, 64);
+  int upper = 0, lower = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (p.fixed[p.index(x, y)]) (y + 0.5 > 32 ? lower : upper)++;
+  CHECK(lower > 30);
+  CHECK(upper <= 2);  // at most the two end pixels of the half circle
+  // The open upper half lets the inside and outside connect.
+  CHECK(flood(p, 0, 0)[p.index(32, 32)]);
+}
+
+TEST_CASE("a gradient curve imposes its colour jump, not its colours", "[rasterize]") {
+  // Frame of fixed colour 0.2 (a Dirichlet rectangle near the border); inside it a gradient
+  // circle whose right-minus-left jump is -0.3 going outwards: the inside must come out at
+  // 0.2 + 0.3 = 0.5 exactly, although no pixel is fixed to 0.5 anywhere.
+  DiffusionCurve frame;
+  frame.points = {{2, 2}, {30, 2}, {60, 2}, {62, 2}, {62, 30}, {62, 60}, {62, 62},
+                  {30, 62}, {4, 62}, {2, 62}, {2, 30}, {2, 4}, {2, 2}};
+  frame.left = {{0, Color(0.2f, 0.2f, 0.2f)}};
+  frame.right = frame.left;
+  auto g = circle(32, 32, 12, Color(0.5f, 0.5f, 0.5f), Color(0.2f, 0.2f, 0.2f));
+  g.gradient_only = true;
+  const Problem p = rasterize({frame, g}, 64, 64);
+  CHECK(!p.rhs.empty());
+  CHECK(!p.fixed[p.index(32, 32)]);
+  SolverOptions opt;
+  opt.tolerance = 1e-8;
+  const Solution s = solve_multigrid(p, opt);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double r = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
+      if (r < 11) CHECK(s.planes[p.index(x, y)] == Approx(0.5f).margin(1e-4));
+      if (r > 13 && x > 3 && y > 3 && x < 61 && y < 61)
+        CHECK(s.planes[p.index(x, y)] == Approx(0.2f).margin(1e-4));
+    }
 }
