@@ -42,24 +42,33 @@ void run_diffuse(const DiffuseArgs& a) {
     threads = std::make_unique<tbb::global_control>(
         tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
-  auto t0 = std::chrono::steady_clock::now();
-  const io::DrawingFile file = io::read_drawing_xml(a.input);
-  const double read_ms = ms_since(t0);
-  for (const std::string& w : file.warnings) std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
-
-  int width = file.drawing.width, height = file.drawing.height;
+  // Arguments are checked before any work, so that their errors come first and alone.
+  int width = 0, height = 0;
   if (!a.size.empty()) {
     std::smatch m;
     if (!std::regex_match(a.size, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
       throw std::invalid_argument("--size: expected WxH, for example 512x512, got '" + a.size + "'");
     width = std::stoi(m[1]);
     height = std::stoi(m[2]);
-  } else if (a.scale > 0) {
+    check_side(width, "--size");
+    check_side(height, "--size");
+  }
+
+  auto t0 = std::chrono::steady_clock::now();
+  const io::DrawingFile file = io::read_drawing_xml(a.input);
+  const double read_ms = ms_since(t0);
+  for (const std::string& w : file.warnings) std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
+
+  if (a.size.empty()) {
+    width = file.drawing.width;
+    height = file.drawing.height;
+  }
+  if (a.scale > 0) {
     width = int(std::lround(width * a.scale));
     height = int(std::lround(height * a.scale));
   }
-  check_side(width, "--size/--scale");
-  check_side(height, "--size/--scale");
+  check_side(width, "--scale");
+  check_side(height, "--scale");
 
   diffusion::SolverOptions solver;
   solver.tolerance = a.tolerance;
