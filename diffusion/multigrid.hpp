@@ -14,7 +14,9 @@
 // however thin it is. A coarse point whose fine pixel is fixed is itself fixed.
 //
 // Cycle. Full multigrid (FMG) start, then V(2,2) cycles until the relative residual
-// ||b - A u|| / ||b|| of every channel is below the tolerance. Smoothing is Gauss-Seidel in an
+// ||b - A u|| / ||b|| of every channel is below the tolerance (accelerated by conjugate
+// gradients when they slow down, see SolverOptions::krylov; refined in double precision when the
+// tolerance is below what float32 reaches). Smoothing is Gauss-Seidel in an
 // order-independent colouring: red-black on the 5-point finest level, four colours on the
 // 9-point coarse levels; rows are processed in parallel (TBB) and every reduction sums in a
 // fixed order, so the result does not depend on the number of threads. The coarsest level
@@ -36,9 +38,10 @@ struct SolverOptions {
   int pre_smooth = 2;
   int post_smooth = 2;
   bool full_multigrid = true;
-  // Accelerate the V-cycles with conjugate gradients (the cycle is the preconditioner). Plain
-  // V-cycles converge at the model-problem rate on ordinary drawings; CG also keeps that rate
-  // where barriers nearly seal off a region. Off: stationary V-cycles.
+  // Plain V-cycles converge at the model-problem rate on ordinary drawings. Where barriers nearly
+  // seal off a region, a few modes escape the coarse grids and the cycles slow down; as soon as
+  // one cycle gains less than 3x, conjugate gradients take over with the (symmetric) cycle as
+  // preconditioner, which removes those modes in a few iterations. Off: V-cycles only.
   bool krylov = true;
   int max_levels = 0;  // 0: coarsen down to <= 64 points; otherwise at most this many levels
 };
