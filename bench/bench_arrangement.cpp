@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -70,7 +70,8 @@ sim::ProjectedFrame bench_frame(int count, bool mixed, std::uint32_t seed) {
       const double tilt = uni(0.3, 0.9);
       f.strands.push_back(sampled(i, 8 + int(8 * turns), [=](double u) {
         const double a = 2 * M_PI * turns * u + ph;
-        const Vector2d p = root + dir * (length * u + tilt * r * std::cos(a)) + side * r * std::sin(a);
+        const Vector2d p =
+            root + dir * (length * u + tilt * r * std::cos(a)) + side * r * std::sin(a);
         return Eigen::Vector3d(p.x(), p.y(), z0 + dz * u + 0.01 * r * std::cos(a));
       }));
     }
@@ -92,8 +93,9 @@ std::string exact_in_child(const std::vector<vector::Wisp>& wisps, double timeou
     char buf[256];
     try {
       const auto t = vector::exact_bezier_topology(wisps);
-      std::snprintf(buf, sizeof buf, "{\"ms\": %.1f, \"vertices\": %ld, \"edges\": %ld, \"faces\": %ld}",
-                    t.ms, t.vertices, t.edges, t.faces);
+      std::snprintf(buf, sizeof buf,
+                    "{\"ms\": %.1f, \"vertices\": %ld, \"edges\": %ld, \"faces\": %ld}", t.ms,
+                    t.vertices, t.edges, t.faces);
     } catch (const std::exception& e) {
       std::snprintf(buf, sizeof buf, "{\"error\": \"CGAL failed\"}");
     }
@@ -171,20 +173,21 @@ int run_arrangement(const std::vector<std::string>& args) {
         const auto plain = vector::build_arrangement(wisps, unclipped);
         exact = exact_in_child(wisps, exact_timeout);
         if (exact.front() == '{')
-          exact.insert(exact.size() - 1, ", \"segment_faces_unclipped\": " + std::to_string(plain.stats.faces));
+          exact.insert(exact.size() - 1,
+                       ", \"segment_faces_unclipped\": " + std::to_string(plain.stats.faces));
         else
           exact_gave_up = true;  // larger sizes only take longer
       }
       const double ms = median(total);
-      std::printf("      {\"wisps\": %d, \"outline_cubics\": %ld, \"segments\": %d, \"vertices\": %d, "
-                  "\"edges\": %d, \"faces\": %d, \"intersections\": %d,\n"
-                  "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
-                  "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
-                  "       \"exact_bezier\": %s}%s\n",
-                  n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges,
-                  arr.stats.faces, arr.stats.intersections, median(build), median(sweep),
-                  median(resolve), ms, 1000 * ms / arr.stats.segments, exact.c_str(),
-                  s + 1 < sizes.size() ? "," : "");
+      std::printf(
+          "      {\"wisps\": %d, \"outline_cubics\": %ld, \"segments\": %d, \"vertices\": %d, "
+          "\"edges\": %d, \"faces\": %d, \"intersections\": %d,\n"
+          "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
+          "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
+          "       \"exact_bezier\": %s}%s\n",
+          n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges, arr.stats.faces,
+          arr.stats.intersections, median(build), median(sweep), median(resolve), ms,
+          1000 * ms / arr.stats.segments, exact.c_str(), s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
     std::printf("    ]}%s\n", mixed ? "" : ",");

@@ -10,5 +10,6 @@ namespace wisp::bench {
 // Each returns the process exit code. `args` are the arguments after the benchmark's name.
 int run_solver(const std::vector<std::string>& args);
 int run_arrangement(const std::vector<std::string>& args);
+int run_sim(const std::vector<std::string>& args);
 
 }  // namespace wisp::bench

@@ -1,0 +1,342 @@
+// Scene JSON reader: see scene.hpp. Each part is a small function over a field reader that
+// remembers which keys it consumed, so whatever is left over is an unknown field, reported with
+// the nearest known name when it looks like a typo.
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/scene.hpp"
+
+namespace wisp::io {
+namespace {
+
+using nlohmann::json;
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// Reads the fields of one JSON object; `where` is the dotted path used in messages ("hair").
+class Fields {
+ public:
+  Fields(const json& obj, std::string where, std::string file)
+      : obj_(obj), where_(std::move(where)), file_(std::move(file)) {
+    if (!obj_.is_object()) fail(where_, "expected an object");
+  }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+    throw std::invalid_argument(file_ + ": " + field + ": " + what);
+  }
+  std::string name(const char* key) const { return where_.empty() ? key : where_ + "." + key; }
+
+  // The raw value of `key`, or null if absent; marks the key as known.
+  const json* find(const char* key) {
+    known_.insert(key);
+    const auto it = obj_.find(key);
+    return it == obj_.end() ? nullptr : &*it;
+  }
+
+  void get(const char* key, double& out) {
+    if (const json* v = find(key)) out = number(*v, name(key));
+  }
+  void get(const char* key, int& out) {
+    if (const json* v = find(key)) {
+      if (!v->is_number_integer()) fail(name(key), "expected an integer, got " + v->dump());
+      const auto n = v->get<long long>();
+      if (n < -1000000000LL || n > 1000000000LL) fail(name(key), "out of range");
+      out = static_cast<int>(n);
+    }
+  }
+  void get(const char* key, std::uint64_t& out) {
+    if (const json* v = find(key)) {
+      if (!v->is_number_unsigned())
+        fail(name(key), "expected a non-negative integer, got " + v->dump());
+      out = v->get<std::uint64_t>();
+    }
+  }
+  void get(const char* key, bool& out) {
+    if (const json* v = find(key)) {
+      if (!v->is_boolean()) fail(name(key), "expected true or false, got " + v->dump());
+      out = v->get<bool>();
+    }
+  }
+  void get(const char* key, std::string& out) {
+    if (const json* v = find(key)) {
+      if (!v->is_string()) fail(name(key), "expected a string, got " + v->dump());
+      out = v->get<std::string>();
+    }
+  }
+  void get(const char* key, Eigen::Vector3d& out) {
+    if (const json* v = find(key)) out = vector3(*v, name(key));
+  }
+  // One of `choices`.
+  void choice(const char* key, std::string& out, const std::vector<std::string>& choices) {
+    get(key, out);
+    for (const auto& c : choices)
+      if (c == out) return;
+    std::string list;
+    for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+    fail(name(key), "expected one of " + list + ", got \"" + out + "\"" + suggest(out, choices));
+  }
+
+  double number(const json& v, const std::string& field) const {
+    if (!v.is_number()) fail(field, "expected a number, got " + v.dump());
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(field, "not a finite number");
+    return d;
+  }
+  Eigen::Vector3d vector3(const json& v, const std::string& field) const {
+    if (!v.is_array() || v.size() != 3)
+      fail(field, "expected an array of 3 numbers, got " + v.dump());
+    return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
+  }
+
+  // Fails on the first key that no get() asked for.
+  void finish() const {
+    for (auto it = obj_.begin(); it != obj_.end(); ++it)
+      if (!known_.count(it.key()))
+        fail(name(it.key().c_str()),
+             "unknown field" +
+                 suggest(it.key(), std::vector<std::string>(known_.begin(), known_.end())));
+  }
+
+  static std::string suggest(const std::string& key, const std::vector<std::string>& known) {
+    std::string best;
+    std::size_t best_d = std::max<std::size_t>(2, key.size() / 3) + 1;
+    for (const auto& k : known) {
+      const std::size_t d = edit_distance(key, k);
+      if (d < best_d) {
+        best_d = d;
+        best = k;
+      }
+    }
+    return best.empty() ? "" : " (did you mean \"" + best + "\"?)";
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  const json& obj_;
+  std::string where_, file_;
+  std::set<std::string> known_;
+};
+
+void require(Fields& f, bool ok, const char* key, const std::string& what) {
+  if (!ok) f.fail(f.name(key), what);
+}
+
+std::filesystem::path resolve(const std::filesystem::path& scene, const std::string& file) {
+  const std::filesystem::path p(file);
+  return p.is_absolute() ? p : scene.parent_path() / p;
+}
+
+void parse_head(Fields& f, Scene& s) {
+  sim::HeadParams& h = s.head;
+  f.choice("shape", h.shape, {"ellipsoid", "mesh"});
+  f.get("radii", h.radii);
+  require(f, h.radii.minCoeff() > 0, "radii", "every radius must be positive");
+  std::string mesh;
+  f.get("mesh", mesh);
+  if (!mesh.empty()) h.mesh = resolve(s.path, mesh);
+  require(f, h.shape != "mesh" || !mesh.empty(), "mesh", "shape \"mesh\" needs an OBJ file name");
+  f.get("mesh_scale", h.mesh_scale);
+  require(f, h.mesh_scale > 0, "mesh_scale", "must be positive");
+  f.get("mesh_offset", h.mesh_offset);
+  f.get("shoulders", h.shoulders);
+  f.get("shoulder_center", h.shoulder_center);
+  f.get("shoulder_half_width", h.shoulder_half_width);
+  require(f, h.shoulder_half_width >= 0, "shoulder_half_width", "must be >= 0");
+  f.get("shoulder_radius", h.shoulder_radius);
+  require(f, h.shoulder_radius > 0, "shoulder_radius", "must be positive");
+}
+
+void parse_hair(Fields& f, Scene& s) {
+  sim::HairParams& h = s.hair;
+  f.choice("source", h.source, {"procedural", "json", "hair"});
+  std::string file;
+  f.get("file", file);
+  if (!file.empty()) h.file = resolve(s.path, file);
+  require(f, h.source == "procedural" || !file.empty(), "file",
+          "source \"" + h.source + "\" needs a strand file name");
+  f.get("count", h.count);
+  require(f, h.source == "procedural" ? h.count >= 1 : h.count >= 0, "count",
+          "must be " +
+              std::string(h.source == "procedural" ? "at least 1" : ">= 0 (0 = all strands)") +
+              ", got " + std::to_string(h.count));
+  require(f, h.count <= 100000, "count", "at most 100000 guides");
+  f.get("segments", h.segments);
+  require(f, h.source == "procedural" ? h.segments >= 1 : h.segments >= 0, "segments",
+          "must be at least 1 (0 keeps a file's points), got " + std::to_string(h.segments));
+  require(f, h.segments <= 1000, "segments", "at most 1000");
+  f.get("length", h.length);
+  require(f, h.length > 0, "length", "must be a positive length in metres");
+  f.get("length_variation", h.length_variation);
+  require(f, h.length_variation >= 0 && h.length_variation < 1, "length_variation",
+          "must be in [0, 1)");
+  f.choice("style", h.style, {"straight", "wavy", "curly"});
+  f.get("amplitude", h.amplitude);
+  require(f, h.amplitude >= 0, "amplitude", "must be >= 0");
+  f.get("frequency", h.frequency);
+  require(f, h.frequency >= 0, "frequency", "must be >= 0");
+  f.get("parting_deg", h.parting_deg);
+  f.get("comb", h.comb);
+  require(f, h.comb >= 0, "comb", "must be >= 0");
+  f.get("scalp_angle_deg", h.scalp_angle_deg);
+  require(f, h.scalp_angle_deg > 0 && h.scalp_angle_deg <= 180, "scalp_angle_deg",
+          "must be in (0, 180]");
+  f.get("face_angle_deg", h.face_angle_deg);
+  require(f, h.face_angle_deg >= 0 && h.face_angle_deg < 180, "face_angle_deg",
+          "must be in [0, 180)");
+  f.get("seed", h.seed);
+  f.get("file_scale", h.file_scale);
+  require(f, h.file_scale > 0, "file_scale", "must be positive");
+  f.get("file_offset", h.file_offset);
+  f.get("file_z_up", h.file_z_up);
+}
+
+void parse_motion(Fields& f, Scene& s) {
+  sim::MotionParams& m = s.motion;
+  f.choice("preset", m.preset, {"none", "turn", "nod", "shake", "walk", "keys"});
+  f.get("duration", m.duration);
+  require(f, m.duration > 0 && m.duration <= 3600, "duration", "must be in (0, 3600] seconds");
+  f.get("amplitude", m.amplitude);
+  f.get("speed", m.speed);
+  require(f, m.speed > 0, "speed", "must be positive");
+  f.get("settle", m.settle);
+  require(f, m.settle >= 0, "settle", "must be >= 0");
+  if (const json* keys = f.find("keys")) {
+    if (!keys->is_array()) f.fail("motion.keys", "expected an array of keyframes");
+    for (std::size_t i = 0; i < keys->size(); ++i) {
+      Fields k((*keys)[i], "motion.keys[" + std::to_string(i) + "]", f.file());
+      sim::Keyframe key;
+      k.get("time", key.time);
+      k.get("position", key.position);
+      k.get("ypr_deg", key.ypr_deg);
+      k.finish();
+      if (i > 0 && !(key.time > m.keys.back().time))
+        k.fail(k.name("time"), "keyframe times must increase");
+      m.keys.push_back(key);
+    }
+  }
+  require(f, m.preset != "keys" || !m.keys.empty(), "keys",
+          "preset \"keys\" needs at least one keyframe");
+}
+
+void parse_sim(Fields& f, Scene& s) {
+  sim::SimParams& p = s.sim;
+  f.choice("model", p.model, {"dftl", "featherstone", "rope"});
+  f.get("fps", p.fps);
+  require(f, p.fps > 0 && p.fps <= 1000, "fps", "must be in (0, 1000]");
+  f.get("step_rate", p.step_rate);
+  require(f, p.step_rate >= p.fps && p.step_rate <= 100000, "step_rate",
+          "must be in [sim.fps, 100000] Hz");
+  f.get("substeps", p.substeps);
+  require(f, p.substeps >= 1 && p.substeps <= 1000, "substeps", "must be in [1, 1000]");
+  f.get("iterations", p.iterations);
+  require(f, p.iterations >= 1 && p.iterations <= 1000, "iterations", "must be in [1, 1000]");
+  f.get("gravity", p.gravity);
+  f.get("density", p.density);
+  require(f, p.density > 0, "density", "must be positive (kg/m)");
+  f.get("bend_stiffness", p.bend_stiffness);
+  require(f, p.bend_stiffness >= 0, "bend_stiffness", "must be >= 0 (N m^2)");
+  f.get("root_stiffness", p.root_stiffness);
+  require(f, p.root_stiffness >= 0, "root_stiffness", "must be >= 0");
+  f.get("damping", p.damping);
+  require(f, p.damping >= 0, "damping", "must be >= 0 (1/s)");
+  f.get("air_drag", p.air_drag);
+  require(f, p.air_drag >= 0, "air_drag", "must be >= 0 (1/s)");
+  f.get("collision", p.collision);
+  f.get("collision_margin", p.collision_margin);
+  require(f, p.collision_margin >= 0, "collision_margin", "must be >= 0 (m)");
+  f.get("max_speed", p.max_speed);
+  require(f, p.max_speed > 0, "max_speed", "must be positive (m/s)");
+  if (const json* wind = f.find("wind")) {
+    Fields w(*wind, "sim.wind", f.file());
+    w.get("velocity", p.wind.velocity);
+    w.get("gust", p.wind.gust);
+    require(w, p.wind.gust >= 0, "gust", "must be >= 0 (m/s)");
+    w.get("gust_frequency", p.wind.gust_frequency);
+    require(w, p.wind.gust_frequency >= 0, "gust_frequency", "must be >= 0 (Hz)");
+    w.get("seed", p.wind.seed);
+    w.finish();
+  }
+}
+
+void parse_camera(Fields& f, Scene& s) {
+  sim::CameraParams& c = s.camera;
+  f.get("eye", c.eye);
+  f.get("target", c.target);
+  f.get("up", c.up);
+  require(f, (c.target - c.eye).norm() > 1e-9, "target", "must differ from camera.eye");
+  require(f, (c.target - c.eye).cross(c.up).norm() > 1e-9, "up",
+          "must not be parallel to the view");
+  f.get("fov_deg", c.fov_deg);
+  require(f, c.fov_deg > 0 && c.fov_deg < 180, "fov_deg", "must be in (0, 180)");
+  f.get("width", c.width);
+  require(f, c.width >= 1 && c.width <= 65536, "width", "must be in [1, 65536] pixels");
+  f.get("height", c.height);
+  require(f, c.height >= 1 && c.height <= 65536, "height", "must be in [1, 65536] pixels");
+  f.get("hysteresis", c.hysteresis);
+  require(f, c.hysteresis >= 0, "hysteresis", "must be >= 0 (m)");
+}
+
+// The parts of a scene; later issues add `style`, `light` and `render` here.
+const std::map<std::string, std::function<void(Fields&, Scene&)>>& parts() {
+  static const std::map<std::string, std::function<void(Fields&, Scene&)>> table = {
+      {"head", parse_head}, {"hair", parse_hair},     {"motion", parse_motion},
+      {"sim", parse_sim},   {"camera", parse_camera},
+  };
+  return table;
+}
+
+}  // namespace
+
+Scene parse_scene(const json& doc, const std::filesystem::path& path) {
+  Scene scene;
+  scene.path = path;
+  Fields top(doc, "", path.string());
+  for (const auto& [name, parse] : parts())
+    if (const json* part = top.find(name.c_str())) {
+      Fields f(*part, name, path.string());
+      parse(f, scene);
+      f.finish();
+    }
+  top.finish();
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the scene file");
+  json doc;
+  try {
+    doc = json::parse(in);
+  } catch (const json::exception& e) {
+    // nlohmann's message carries the line and column (or the overflowing number).
+    std::string what = e.what();
+    auto at = what.find("] ");
+    at = at == std::string::npos ? at : at + 2;
+    throw std::invalid_argument(
+        path.string() + ": invalid JSON: " + (at == std::string::npos ? what : what.substr(at)));
+  }
+  return parse_scene(doc, path);
+}
+
+}  // namespace wisp::io

@@ -1,0 +1,162 @@
+// Camera and Projector: see camera.hpp.
+#include "sim/camera.hpp"
+
+#include <BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h>
+#include <btBulletCollisionCommon.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace wisp::sim {
+namespace {
+
+using Eigen::Vector3d;
+
+btVector3 bt(const Vector3d& v) {
+  return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
+}
+
+}  // namespace
+
+Camera Camera::look_at(const CameraParams& p) {
+  if (!p.eye.allFinite() || !p.target.allFinite() || !p.up.allFinite())
+    throw std::invalid_argument("camera.eye / camera.target / camera.up: not finite vectors");
+  const Vector3d f = p.target - p.eye;
+  if (f.norm() < 1e-9) throw std::invalid_argument("camera.target: must differ from camera.eye");
+  Camera c;
+  c.eye = p.eye;
+  c.forward = f.normalized();
+  const Vector3d r = c.forward.cross(p.up);
+  if (r.norm() < 1e-9)
+    throw std::invalid_argument("camera.up: must not be parallel to the viewing direction");
+  c.right = r.normalized();
+  c.up = c.right.cross(c.forward);
+  if (!(p.fov_deg > 0 && p.fov_deg < 180))
+    throw std::invalid_argument("camera.fov_deg: must be in (0, 180)");
+  if (p.width < 1 || p.height < 1 || p.width > 65536 || p.height > 65536)
+    throw std::invalid_argument("camera.width / camera.height: must be between 1 and 65536");
+  if (!(p.hysteresis >= 0) || !std::isfinite(p.hysteresis))
+    throw std::invalid_argument("camera.hysteresis: must be a finite number >= 0");
+  c.width = p.width;
+  c.height = p.height;
+  c.focal_px = 0.5 * p.height / std::tan(0.5 * p.fov_deg * M_PI / 180);
+  return c;
+}
+
+Eigen::Vector2d Camera::project(const Vector3d& world, double* depth) const {
+  const Vector3d d = world - eye;
+  if (depth) *depth = d.norm();
+  const double z = std::max(d.dot(forward), 1e-6);
+  return {0.5 * width + focal_px * d.dot(right) / z, 0.5 * height - focal_px * d.dot(up) / z};
+}
+
+// The head as Bullet collision objects: full size and shrunk by the hysteresis band.
+struct Projector::Bullet {
+  std::unique_ptr<btTriangleMesh> mesh;
+  std::unique_ptr<btCollisionShape> outer_shape, inner_shape;
+  btCollisionObject outer, inner;
+};
+
+Projector::Projector(const HeadGeometry& head, const CameraParams& camera)
+    : camera_(Camera::look_at(camera)), hysteresis_(camera.hysteresis), bullet_(new Bullet) {
+  Bullet& b = *bullet_;
+  if (head.shape == "ellipsoid") {
+    const btVector3 centre(0, 0, 0);
+    const btScalar radius = 1;
+    auto outer = std::make_unique<btMultiSphereShape>(&centre, &radius, 1);
+    outer->setLocalScaling(bt(head.radii));
+    auto inner = std::make_unique<btMultiSphereShape>(&centre, &radius, 1);
+    inner->setLocalScaling(bt((head.radii - Vector3d::Constant(hysteresis_)).cwiseMax(1e-4)));
+    b.outer_shape = std::move(outer);
+    b.inner_shape = std::move(inner);
+  } else {
+    b.mesh = std::make_unique<btTriangleMesh>();
+    for (const auto& t : head.mesh.triangles)
+      b.mesh->addTriangle(bt(head.mesh.vertices[t[0]]), bt(head.mesh.vertices[t[1]]),
+                          bt(head.mesh.vertices[t[2]]));
+    auto outer = std::make_unique<btBvhTriangleMeshShape>(b.mesh.get(), true);
+    // Shrink about the head-local origin (the head's centre for sensible meshes).
+    double extent = 0;
+    for (const auto& v : head.mesh.vertices) extent = std::max(extent, v.norm());
+    const double s = std::max(0.5, 1 - hysteresis_ / std::max(extent, 1e-3));
+    b.inner_shape = std::make_unique<btScaledBvhTriangleMeshShape>(
+        outer.get(), btVector3(btScalar(s), btScalar(s), btScalar(s)));
+    b.outer_shape = std::move(outer);
+  }
+  b.outer.setCollisionShape(b.outer_shape.get());
+  b.inner.setCollisionShape(b.inner_shape.get());
+}
+
+Projector::~Projector() = default;
+
+ProjectedFrame Projector::project(const StrandFrame& frame) {
+  Bullet& b = *bullet_;
+  const Eigen::Quaterniond& q = frame.head.rotation;
+  const btTransform pose(
+      btQuaternion(btScalar(q.x()), btScalar(q.y()), btScalar(q.z()), btScalar(q.w())),
+      bt(frame.head.position));
+  b.outer.setWorldTransform(pose);
+  b.inner.setWorldTransform(pose);
+  const btTransform from(btQuaternion::getIdentity(), bt(camera_.eye));
+
+  // Is the ray from the eye to `x` blocked by `obj` clearly before reaching x?
+  const auto blocked = [&](btCollisionObject& obj, const Vector3d& x, double dist) {
+    const btTransform to(btQuaternion::getIdentity(), bt(x));
+    btCollisionWorld::ClosestRayResultCallback cb(from.getOrigin(), to.getOrigin());
+    btCollisionWorld::rayTestSingle(from, to, &obj, obj.getCollisionShape(),
+                                    obj.getWorldTransform(), cb);
+    return cb.hasHit() && cb.m_closestHitFraction * dist < dist - hysteresis_;
+  };
+
+  bool fresh = visible_.size() != frame.strands.size();
+  for (std::size_t s = 0; !fresh && s < frame.strands.size(); ++s)
+    fresh = visible_[s].size() != frame.strands[s].size();
+  if (fresh) visible_.assign(frame.strands.size(), {});
+
+  ProjectedFrame out;
+  out.frame = frame.frame;
+  out.time = frame.time;
+  out.width = camera_.width;
+  out.height = camera_.height;
+  out.focal_px = camera_.focal_px;
+  out.eye = camera_.eye;
+  out.strands.resize(frame.strands.size());
+  for (std::size_t s = 0; s < frame.strands.size(); ++s) {
+    const Polyline& line = frame.strands[s];
+    ProjectedStrand& ps = out.strands[s];
+    const std::size_t n = line.size();
+    ps.id = static_cast<int>(s);
+    ps.pixel.resize(n);
+    ps.depth.resize(n);
+    ps.world = line;
+    ps.tangent.resize(n);
+    ps.visible.resize(n);
+    if (fresh) visible_[s].assign(n, 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vector3d& x = line[i];
+      ps.pixel[i] = camera_.project(x, &ps.depth[i]);
+      const Vector3d d = n < 2        ? Vector3d::UnitY()
+                         : i == 0     ? Vector3d(line[1] - line[0])
+                         : i + 1 == n ? Vector3d(line[n - 1] - line[n - 2])
+                                      : Vector3d(line[i + 1] - line[i - 1]);
+      ps.tangent[i] = d.norm() > 0 ? Vector3d(d.normalized()) : Vector3d::UnitY();
+      std::uint8_t vis;
+      if ((x - camera_.eye).dot(camera_.forward) <= 1e-6) {
+        vis = 0;  // behind the eye
+      } else {
+        const bool outer_blocks = blocked(b.outer, x, ps.depth[i]);
+        if (!outer_blocks)
+          vis = 1;
+        else if (fresh || blocked(b.inner, x, ps.depth[i]))
+          vis = 0;
+        else
+          vis = visible_[s][i];
+      }
+      ps.visible[i] = vis;
+      visible_[s][i] = vis;
+    }
+  }
+  return out;
+}
+
+}  // namespace wisp::sim

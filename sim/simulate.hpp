@@ -1,0 +1,49 @@
+// Runs a strand simulation from a prepared setup to an Animation. The physics advances in fixed
+// steps of 1/sim.step_rate seconds (each split into sim.substeps), whatever the frame rate; a frame
+// is the state at the step nearest its time. Every step is checked: a non-finite position or a
+// sample faster than sim.max_speed stops the run with an error naming the frame, so a blown-up
+// integrator never writes NaNs into an animation.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "sim/animation.hpp"
+#include "sim/params.hpp"
+
+namespace wisp::sim {
+
+struct SimSetup {
+  HeadGeometry head;
+  std::optional<Capsule> shoulders;  // body frame (see head.hpp)
+  std::vector<Keyframe> motion;      // expanded keyframes (sim/motion.hpp)
+  double duration = 4.0;             // seconds
+  std::vector<Polyline> rest;        // guides at rest, head-local metres, root first
+  SimParams sim;
+};
+
+// Everything but the guides: head (with `mesh` for shape "mesh"), shoulders, motion, parameters.
+SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, const SimParams& sim,
+                         const TriangleMesh& mesh = {});
+
+// The setup of a procedural hair model: make_base_setup plus generate_hair's guides, kept
+// sim.collision_margin + 2 mm off the head. (Scenes with strand files are prepared by
+// io::load_sim_setup, which reads the file first.)
+SimSetup make_setup(const HeadParams& head, const HairParams& hair, const MotionParams& motion,
+                    const SimParams& sim, const TriangleMesh& mesh = {});
+
+// Checks sim parameters; throws std::invalid_argument naming the field.
+void check_sim_params(const SimParams& sim);
+
+// Called after each frame with (frames done, total frames).
+using SimProgress = std::function<void(int done, int total)>;
+
+// Throws std::invalid_argument for bad parameters and std::runtime_error when the integrator
+// blows up ("simulation blew up at frame F ...").
+Animation simulate(const SimSetup& setup, const SimProgress& progress = {});
+
+// Largest |segment length / rest length - 1| of any strand in `frame`, against `rest`.
+double max_stretch(const StrandFrame& frame, const std::vector<Polyline>& rest);
+
+}  // namespace wisp::sim
