@@ -1,0 +1,399 @@
+// build_arrangement: flattens the wisps into outline segments, lets CGAL arrange them
+// (arrangement_cgal.cpp), then decides on the plain planar map: winding numbers per face, the
+// front-most wisp per face, visibility per outline piece, the hair mask and the ink polylines.
+#include "vector/arrangement.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "vector/band_depth.hpp"
+#include "vector/ink.hpp"
+#include "vector/planar_map.hpp"
+
+namespace wisp::vector {
+
+using Eigen::Vector2d;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+using Cover = std::vector<std::pair<int, int>>;  // (wisp, winding != 0), sorted by wisp
+
+int winding(const Cover& c, int wisp) {
+  const auto it = std::lower_bound(c.begin(), c.end(), std::make_pair(wisp, INT32_MIN));
+  return it != c.end() && it->first == wisp ? it->second : 0;
+}
+
+void add_winding(Cover& c, int wisp, int delta) {
+  const auto it = std::lower_bound(c.begin(), c.end(), std::make_pair(wisp, INT32_MIN));
+  if (it != c.end() && it->first == wisp) {
+    it->second += delta;
+    if (it->second == 0) c.erase(it);
+  } else {
+    c.insert(it, {wisp, delta});
+  }
+}
+
+void check_wisp(const Wisp& w, int index) {
+  const std::string name = "wisp " + std::to_string(index);
+  if (w.sections.size() < 2) throw std::invalid_argument(name + ": needs at least 2 sections");
+  for (const Section& s : w.sections)
+    if (!s.left.allFinite() || !s.right.allFinite() || !s.centre.allFinite() ||
+        !std::isfinite(s.depth))
+      throw std::invalid_argument(name + ": section is not finite");
+}
+
+// Everything decided on the planar map.
+struct Resolver {
+  const std::vector<Wisp>& wisps;
+  const std::vector<OutlineSegment>& segments;
+  const PlanarMap& map;
+  const ArrangementOptions& options;
+
+  Resolver(const std::vector<Wisp>& w, const std::vector<OutlineSegment>& s, const PlanarMap& m,
+           const ArrangementOptions& o)
+      : wisps(w), segments(s), map(m), options(o) {}
+
+  std::vector<Cover> cover;      // per face
+  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones in debug view)
+  std::vector<char> hair;        // per face: covered and in view
+  std::vector<char> in_view;
+  std::vector<int> front;
+  std::vector<double> front_depth;
+  std::vector<char> visible;  // per entry of map.sources
+
+  template <class F>
+  void for_each_ccb(int f, F&& fn) const {
+    const PlanarMap::Face& face = map.faces[f];
+    if (face.outer >= 0) fn(face.outer);
+    for (int i = face.holes_begin; i < face.holes_end; ++i) fn(map.holes[i]);
+  }
+
+  std::vector<Vector2d> ring(int h0) const {
+    std::vector<Vector2d> points;
+    int h = h0;
+    do {
+      points.push_back(map.vertices[map.source(h)]);
+      h = map.halfedges[h].next;
+    } while (h != h0);
+    return points;
+  }
+
+  // Winding numbers: zero in the unbounded face; crossing a segment from its left (CGAL's
+  // orientation) to its right lowers its wisp's winding by one.
+  void propagate_cover() {
+    cover.assign(map.faces.size(), {});
+    std::vector<char> seen(map.faces.size(), 0);
+    std::vector<int> queue = {map.unbounded_face};
+    seen[map.unbounded_face] = 1;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int f = queue[q];
+      for_each_ccb(f, [&](int h0) {
+        int h = h0;
+        do {
+          const int g = map.halfedges[h ^ 1].face;
+          if (!seen[g]) {
+            seen[g] = 1;
+            Cover c = cover[f];
+            const int e = h / 2;
+            for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+              const PlanarMap::Source& s = map.sources[i];
+              const int w = segments[s.segment].wisp;
+              if (w < 0) continue;
+              const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
+              add_winding(c, w, along_h ? -1 : +1);
+            }
+            cover[g] = std::move(c);
+            queue.push_back(g);
+          }
+          h = map.halfedges[h].next;
+        } while (h != h0);
+      });
+    }
+  }
+
+  // An interior point: the middle of the widest span cut from the face by one of three
+  // horizontal lines (even-odd over all its boundaries, so holes are avoided).
+  Vector2d interior_point(int f) const {
+    std::vector<std::pair<Vector2d, Vector2d>> edges;
+    double y0 = INFINITY, y1 = -INFINITY;
+    for_each_ccb(f, [&](int h0) {
+      int h = h0;
+      do {
+        const Vector2d &a = map.vertices[map.source(h)], &b = map.vertices[map.halfedges[h].target];
+        edges.emplace_back(a, b);
+        y0 = std::min(y0, a.y()), y1 = std::max(y1, a.y());
+        h = map.halfedges[h].next;
+      } while (h != h0);
+    });
+    Vector2d best = 0.5 * (edges[0].first + edges[0].second);
+    double best_width = 0;
+    std::vector<double> xs;
+    for (double frac : {0.5, 0.25, 0.75}) {
+      const double y = y0 + frac * (y1 - y0);
+      xs.clear();
+      for (const auto& [a, b] : edges)
+        if ((a.y() > y) != (b.y() > y))
+          xs.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+      std::sort(xs.begin(), xs.end());
+      for (size_t i = 0; i + 1 < xs.size(); i += 2)
+        if (xs[i + 1] - xs[i] > best_width)
+          best_width = xs[i + 1] - xs[i], best = {0.5 * (xs[i] + xs[i + 1]), y};
+    }
+    return best;
+  }
+
+  void order_faces() {
+    const int faces = int(map.faces.size());
+    sample.assign(faces, Vector2d::Zero());
+    in_view.assign(faces, 0);
+    hair.assign(faces, 0);
+    front.assign(faces, -1);
+    front_depth.assign(faces, 0);
+    for (int f = 0; f < faces; ++f) {
+      if (f == map.unbounded_face) continue;
+      if (cover[f].empty() && !options.debug_view) continue;
+      sample[f] = interior_point(f);
+      in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
+      if (cover[f].empty()) continue;
+      hair[f] = in_view[f];
+      // Front-most by depth at the sample point; ties go to the lower wisp index.
+      double best = INFINITY;
+      for (const auto& [w, _] : cover[f]) {
+        const double z = band_depth(wisps[w], sample[f]).depth;
+        if (z < best) best = z, front[f] = w;
+      }
+      front_depth[f] = best;
+    }
+  }
+
+  double s_at(const OutlineSegment& seg, const Vector2d& p) const {
+    const Vector2d ab = seg.b - seg.a;
+    const double l = std::clamp((p - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    return seg.s0 + l * (seg.s1 - seg.s0);
+  }
+
+  // A piece is visible where its wisp is front-most on one side and no other pass of the same
+  // wisp (a curl over itself) covers it from nearer the eye.
+  void decide_visibility() {
+    visible.assign(map.sources.size(), 0);
+    for (int e = 0; e < map.edge_count(); ++e) {
+      const int fl = map.halfedges[2 * e].face, fr = map.halfedges[2 * e + 1].face;
+      for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+        const OutlineSegment& seg = segments[map.sources[i].segment];
+        const int w = seg.wisp;
+        if (w < 0) continue;
+        bool vis = (hair[fl] && front[fl] == w) || (hair[fr] && front[fr] == w);
+        if (vis && winding(cover[fl], w) != 0 && winding(cover[fr], w) != 0) {
+          const Vector2d m =
+              0.5 * (map.vertices[map.source(2 * e)] + map.vertices[map.halfedges[2 * e].target]);
+          const Vector2d ab = seg.b - seg.a;
+          const double l = std::clamp((m - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+          const double z = seg.z0 + l * (seg.z1 - seg.z0);
+          const auto other = band_depth_inside(wisps[w], m, 1e-6);
+          if (other && other->depth < z * (1 - 1e-12)) vis = false;
+        }
+        visible[i] = vis;
+      }
+    }
+  }
+
+  std::vector<std::vector<std::pair<double, double>>> visible_intervals() const {
+    struct Piece {
+      double lo, hi;
+      bool visible;
+    };
+    std::vector<std::vector<Piece>> pieces(wisps.size());
+    for (int e = 0; e < map.edge_count(); ++e) {
+      const Vector2d &a = map.vertices[map.source(2 * e)],
+                     &b = map.vertices[map.halfedges[2 * e].target];
+      for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+        const OutlineSegment& seg = segments[map.sources[i].segment];
+        if (seg.wisp < 0) continue;
+        const double sa = s_at(seg, a), sb = s_at(seg, b);
+        pieces[seg.wisp].push_back({std::min(sa, sb), std::max(sa, sb), visible[i] != 0});
+      }
+    }
+    std::vector<std::vector<std::pair<double, double>>> out(wisps.size());
+    for (size_t w = 0; w < wisps.size(); ++w) {
+      auto& p = pieces[w];
+      std::sort(p.begin(), p.end(), [](const Piece& x, const Piece& y) {
+        return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
+      });
+      for (const Piece& piece : p) {
+        if (!piece.visible || piece.hi <= piece.lo) continue;
+        if (!out[w].empty() && piece.lo <= out[w].back().second + 1e-9)
+          out[w].back().second = std::max(out[w].back().second, piece.hi);
+        else
+          out[w].push_back({piece.lo, piece.hi});
+      }
+    }
+    return out;
+  }
+
+  bool frame_edge(int e) const {
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
+      if (segments[map.sources[i].segment].wisp < 0) return true;
+    return false;
+  }
+
+  // The wisp whose visible outline runs along edge e (lowest index if several), or -1.
+  int visible_wisp(int e) const {
+    int best = -1;
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+      const int w = segments[map.sources[i].segment].wisp;
+      if (visible[i] && w >= 0 && (best < 0 || w < best)) best = w;
+    }
+    return best;
+  }
+
+  std::vector<int> edge_wisps(int e) const {
+    std::vector<int> w;
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
+      w.push_back(segments[map.sources[i].segment].wisp);
+    std::sort(w.begin(), w.end());
+    w.erase(std::unique(w.begin(), w.end()), w.end());
+    return w;
+  }
+
+  // Vertices where outlines cross or touch: not a joint of exactly two edges of the same
+  // source wisps.
+  std::vector<char> intersection_flags() const {
+    const int n = int(map.vertices.size());
+    std::vector<int> degree(n, 0), first_edge(n, -1);
+    std::vector<char> flag(n, 0);
+    for (int e = 0; e < map.edge_count(); ++e) {
+      for (int v : {map.source(2 * e), map.halfedges[2 * e].target}) {
+        ++degree[v];
+        if (first_edge[v] < 0)
+          first_edge[v] = e;
+        else if (edge_wisps(e) != edge_wisps(first_edge[v]))
+          flag[v] = 1;
+      }
+    }
+    for (int v = 0; v < n; ++v) flag[v] |= degree[v] != 2;
+    return flag;
+  }
+
+  ArrangementView view() const {
+    ArrangementView v;
+    v.faces.resize(map.faces.size());
+    for (int f = 0; f < int(map.faces.size()); ++f) {
+      ViewFace& vf = v.faces[f];
+      const PlanarMap::Face& face = map.faces[f];
+      vf.unbounded = f == map.unbounded_face;
+      if (face.outer >= 0) vf.outer = ring(face.outer);
+      for (int i = face.holes_begin; i < face.holes_end; ++i)
+        vf.holes.push_back(ring(map.holes[i]));
+      vf.cover = cover[f];
+      vf.front = hair[f] ? front[f] : -1;
+      vf.front_depth = front_depth[f];
+      vf.sample = sample[f];
+      vf.in_view = in_view[f];
+    }
+    v.vertices.resize(map.vertices.size());
+    for (int i = 0; i < int(map.vertices.size()); ++i) v.vertices[i].p = map.vertices[i];
+    v.edges.resize(map.edge_count());
+    for (int e = 0; e < map.edge_count(); ++e) {
+      ViewEdge& ve = v.edges[e];
+      const int va = map.source(2 * e), vb = map.halfedges[2 * e].target;
+      ve.a = map.vertices[va];
+      ve.b = map.vertices[vb];
+      ve.face_left = map.halfedges[2 * e].face;
+      ve.face_right = map.halfedges[2 * e + 1].face;
+      for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+        const OutlineSegment& seg = segments[map.sources[i].segment];
+        ViewEdgeSource s{seg.wisp, seg.side, 0, 0, visible[i] != 0};
+        if (seg.wisp >= 0) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
+        ve.sources.push_back(s);
+      }
+      const bool hl = hair[ve.face_left], hr = hair[ve.face_right];
+      ve.silhouette = hl != hr && !frame_edge(e);
+      ve.occlusion = hl && hr && front[ve.face_left] != front[ve.face_right];
+    }
+    const std::vector<char> crossing = intersection_flags();
+    for (int i = 0; i < int(v.vertices.size()); ++i) v.vertices[i].intersection = crossing[i];
+    for (int e = 0; e < map.edge_count(); ++e) {
+      ++v.vertices[map.source(2 * e)].degree;
+      ++v.vertices[map.halfedges[2 * e].target].degree;
+    }
+    return v;
+  }
+};
+
+}  // namespace
+
+Eigen::AlignedBox2d image_rect(int width, int height) {
+  return Eigen::AlignedBox2d(Vector2d(0, 0), Vector2d(width, height));
+}
+
+WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
+                                  const ArrangementOptions& options) {
+  if (options.clip_to_view) {
+    const auto& v = options.view;
+    if (!v.min().allFinite() || !v.max().allFinite() || !(v.sizes().array() > 0).all())
+      throw std::invalid_argument("arrangement: view must be a finite, non-empty rectangle");
+  }
+  for (size_t i = 0; i < wisps.size(); ++i) check_wisp(wisps[i], int(i));
+
+  WispArrangement out;
+  const auto t0 = Clock::now();
+  std::vector<OutlineSegment> segments;
+  for (int w = 0; w < int(wisps.size()); ++w) {
+    if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
+    ++out.stats.wisps;
+    const std::vector<OutlineVertex> poly = outline_polygon(wisps[w]);
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const OutlineVertex &a = poly[i], &b = poly[(i + 1) % poly.size()];
+      segments.push_back(
+          {a.p, b.p, w, a.side, a.s, i + 1 < poly.size() ? b.s : 1.0, a.depth, b.depth});
+    }
+  }
+  if (options.clip_to_view) {
+    const auto& v = options.view;
+    const Vector2d c[4] = {v.corner(v.BottomLeft), v.corner(v.BottomRight), v.corner(v.TopRight),
+                           v.corner(v.TopLeft)};
+    for (int i = 0; i < 4; ++i) segments.push_back({c[i], c[(i + 1) % 4]});
+  }
+  const PlanarMap map = arrange_segments(segments);
+  out.stats.sweep_ms = ms_since(t0);
+
+  const auto t1 = Clock::now();
+  Resolver r(wisps, segments, map, options);
+  r.propagate_cover();
+  r.order_faces();
+  r.decide_visibility();
+  out.visible = r.visible_intervals();
+  out.mask = trace_hair_mask(map, r.hair);
+
+  std::vector<int> silhouette(map.edge_count(), -1), occlusion(map.edge_count(), -1);
+  for (int e = 0; e < map.edge_count(); ++e) {
+    const int fl = map.halfedges[2 * e].face, fr = map.halfedges[2 * e + 1].face;
+    if (r.hair[fl] != r.hair[fr] && !r.frame_edge(e)) silhouette[e] = r.front[r.hair[fl] ? fl : fr];
+    if (r.hair[fl] && r.hair[fr] && r.front[fl] != r.front[fr]) {
+      const int w = r.visible_wisp(e);
+      occlusion[e] = w >= 0 ? w : std::min(r.front[fl], r.front[fr]);
+    }
+  }
+  out.silhouette = chain_edges(map, silhouette);
+  out.occlusion = chain_edges(map, occlusion);
+  if (options.debug_view) out.view = r.view();
+  out.stats.resolve_ms = ms_since(t1);
+
+  out.stats.segments = int(segments.size());
+  out.stats.vertices = int(map.vertices.size());
+  out.stats.edges = map.edge_count();
+  out.stats.faces = int(map.faces.size());
+  for (char h : r.hair) out.stats.covered_faces += h;
+  for (char c : r.intersection_flags()) out.stats.intersections += c;
+  return out;
+}
+
+}  // namespace wisp::vector

@@ -1,0 +1,87 @@
+// Exact visibility of wisps: the planar arrangement of all wisp outlines (CGAL, exact segments)
+// and what it decides. This replaces Faraj's pairwise intersection rule (2009, section 3.3.2),
+// which fails on wavy wisps, containment and cyclic overlaps, with one general rule:
+//  - coverage: each face knows the winding number of every wisp around it, propagated from the
+//    unbounded face across edges (crossing an outline changes its wisp's winding by one);
+//  - depth order: the front-most covering wisp of a face is the one nearest the eye at one
+//    interior sample point of the face (depth inside a wisp is that of its centre cross-section);
+//  - visibility: an outline piece is visible where its wisp is front-most on either side of it
+//    (and no other pass of the same wisp lies in front of it, for curls that overlap themselves).
+// From these follow the hair mask (union of covered faces, holes kept), the silhouette and the
+// occlusion boundaries as ink polylines, and per outline the visible parameter intervals.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <utility>
+#include <vector>
+
+#include "vector/arrangement_view.hpp"
+#include "vector/wisp.hpp"
+
+namespace wisp::vector {
+
+struct ArrangementOptions {
+  // The image rectangle. With clipping on, its sides enter the arrangement: nothing outside
+  // counts as hair or as visible, and wisps wholly outside are left out before the sweep.
+  Eigen::AlignedBox2d view{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  bool clip_to_view = true;
+  bool debug_view = false;  // fill WispArrangement::view
+};
+
+// A polygon with holes, vertices in pixels. The outer boundary turns counter-clockwise in (x, y)
+// (clockwise on screen, where y points down); holes turn the other way.
+struct MaskPolygon {
+  std::vector<Eigen::Vector2d> outer;
+  std::vector<std::vector<Eigen::Vector2d>> holes;
+};
+
+// Where hair is: the union of covered faces inside the view.
+struct HairMask {
+  std::vector<MaskPolygon> polygons;
+};
+
+// A polyline for ink outlines; `wisp` is the wisp whose visible outline it follows.
+struct InkLine {
+  std::vector<Eigen::Vector2d> points;
+  bool closed = false;
+  int wisp = -1;
+};
+
+struct ArrangementStats {
+  int wisps = 0;     // wisps inserted (after culling those wholly outside the view)
+  int segments = 0;  // input segments, frame sides included
+  int vertices = 0, edges = 0, faces = 0;
+  int covered_faces = 0;
+  int intersections = 0;  // vertices where outlines cross or touch
+  double sweep_ms = 0;    // CGAL insertion and export
+  double resolve_ms = 0;  // coverage, depth order, visibility, mask, polylines
+};
+
+struct WispArrangement {
+  // Per input wisp: the visible parts of its outline as sorted, disjoint [s0, s1] intervals of
+  // the outline parameter (the layout of diffusion::DiffusionCurve::active; empty: all hidden).
+  std::vector<std::vector<std::pair<double, double>>> visible;
+  HairMask mask;
+  std::vector<InkLine> silhouette;  // boundary between hair and no hair (not the view frame)
+  std::vector<InkLine> occlusion;   // where the front-most wisp changes inside the hair
+  ArrangementStats stats;
+  ArrangementView view;  // only with ArrangementOptions::debug_view
+};
+
+// Throws std::invalid_argument when clipping is on and the view is empty or not finite.
+WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
+                                  const ArrangementOptions& options);
+
+// The view rectangle of a frame of the given size: [0,width] x [0,height].
+Eigen::AlignedBox2d image_rect(int width, int height);
+
+// Topology of the same outlines as exact cubic Bezier curves (CGAL's Arr_Bezier_curve_traits_2
+// with CORE algebraic numbers), without clipping. Slow and fragile: a cross-check for small
+// scenes and the benchmark, never part of rendering. Throws std::runtime_error if CGAL fails.
+struct ExactTopology {
+  long vertices = 0, edges = 0, faces = 0;
+  double ms = 0;
+};
+ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps);
+
+}  // namespace wisp::vector

@@ -1,0 +1,77 @@
+// The one translation unit that builds the exact segment arrangement: one aggregated sweep
+// (CGAL::insert over all segments), then a copy of the DCEL into PlanarMap's index arrays.
+#include <CGAL/number_utils.h>
+
+#include "vector/arrangement_cgal.hpp"
+#include "vector/planar_map.hpp"
+
+namespace wisp::vector {
+
+namespace {
+
+// CGAL orders points xy-lexicographically; a segment is "left to right" when a < b that way.
+bool left_to_right(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+}
+
+}  // namespace
+
+PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments) {
+  using namespace cgal;
+  std::vector<Traits::Curve_2> curves;
+  curves.reserve(segments.size());
+  for (int i = 0; i < int(segments.size()); ++i) {
+    const OutlineSegment& s = segments[i];
+    if (s.a == s.b) continue;
+    curves.emplace_back(Kernel::Segment_2(Point(s.a.x(), s.a.y()), Point(s.b.x(), s.b.y())), i);
+  }
+  Arrangement arr;
+  CGAL::insert(arr, curves.begin(), curves.end());
+
+  PlanarMap map;
+  map.vertices.reserve(arr.number_of_vertices());
+  int index = 0;
+  for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+    v->set_data(index++);
+    map.vertices.emplace_back(CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y()));
+  }
+  index = 0;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) f->set_data(index++);
+  index = 0;
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    e->set_data(2 * index);
+    e->twin()->set_data(2 * index + 1);
+    ++index;
+  }
+
+  map.halfedges.resize(2 * arr.number_of_edges());
+  map.source_begin.reserve(arr.number_of_edges() + 1);
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    for (auto h : {Arrangement::Halfedge_handle(e), e->twin()}) {
+      map.halfedges[h->data()] = {h->target()->data(), h->next()->data(), h->face()->data()};
+    }
+    const bool edge_left_to_right = e->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+    map.source_begin.push_back(int(map.sources.size()));
+    for (int segment : e->curve().data()) {
+      const OutlineSegment& s = segments[segment];
+      map.sources.push_back({segment, left_to_right(s.a, s.b) == edge_left_to_right});
+    }
+  }
+  map.source_begin.push_back(int(map.sources.size()));
+
+  map.faces.resize(arr.number_of_faces());
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    PlanarMap::Face& face = map.faces[f->data()];
+    if (f->is_unbounded())
+      map.unbounded_face = f->data();
+    else
+      face.outer = f->outer_ccb()->data();
+    face.holes_begin = int(map.holes.size());
+    for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
+      map.holes.push_back((*hole)->data());
+    face.holes_end = int(map.holes.size());
+  }
+  return map;
+}
+
+}  // namespace wisp::vector

@@ -1,0 +1,30 @@
+// Depth inside a wisp. A wisp's depth is known on its centre curve (Faraj 2009, section 3.2.1:
+// distance to the eye per sample, linear in between); a point of the band takes the depth of the
+// cross-section it lies on. On the flattened band that is: find the cells (quadrilaterals between
+// consecutive sections) containing the point and interpolate the centre depth by the point's
+// projection onto the cell's centre segment. Where a curl overlaps itself several cells contain
+// the point; the nearest one is in front.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "vector/wisp.hpp"
+
+namespace wisp::vector {
+
+struct BandHit {
+  double depth = 0;
+  double t = 0;  // centre parameter of the cross-section
+};
+
+// The front-most cell containing p (on its boundary counts) or, when none does (p a rounding
+// error outside the band), the nearest cell.
+BandHit band_depth(const Wisp& wisp, const Eigen::Vector2d& p);
+
+// The front-most cell that contains p at least `margin` px inside its boundary, if any. Used to
+// ask whether another pass of a curl covers a point of the wisp's own outline: the point's own
+// pass has it on its boundary, so the margin leaves that pass out.
+std::optional<BandHit> band_depth_inside(const Wisp& wisp, const Eigen::Vector2d& p, double margin);
+
+}  // namespace wisp::vector

@@ -1,0 +1,129 @@
+// Hair mask cycles and ink polylines on the plain planar map.
+#include "vector/ink.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace wisp::vector {
+
+using Eigen::Vector2d;
+
+namespace {
+
+double signed_area(const std::vector<Vector2d>& ring) {
+  double a = 0;
+  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+    a += ring[j].x() * ring[i].y() - ring[i].x() * ring[j].y();
+  return 0.5 * a;
+}
+
+}  // namespace
+
+HairMask trace_hair_mask(const PlanarMap& map, const std::vector<char>& hair) {
+  const auto& he = map.halfedges;
+  auto boundary = [&](int h) { return hair[he[h].face] && !hair[he[h ^ 1].face]; };
+
+  // Connected hair regions: faces joined across edges with hair on both sides.
+  std::vector<int> region(map.faces.size(), -1);
+  int regions = 0;
+  std::vector<int> stack;
+  std::vector<std::vector<int>> face_halfedges(map.faces.size());
+  for (int h = 0; h < int(he.size()); ++h) face_halfedges[he[h].face].push_back(h);
+  for (int f = 0; f < int(map.faces.size()); ++f) {
+    if (!hair[f] || region[f] >= 0) continue;
+    region[f] = regions;
+    stack = {f};
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      for (int h : face_halfedges[g]) {
+        const int n = he[h ^ 1].face;
+        if (hair[n] && region[n] < 0) region[n] = regions, stack.push_back(n);
+      }
+    }
+    ++regions;
+  }
+
+  // Boundary cycles: from a boundary halfedge, the next one turns around its target through hair
+  // faces until it leaves the hair again, so each cycle stays in one region.
+  struct Cycle {
+    std::vector<Vector2d> ring;
+    double area;
+  };
+  std::vector<std::vector<Cycle>> cycles(regions);
+  std::vector<char> used(he.size(), 0);
+  for (int h0 = 0; h0 < int(he.size()); ++h0) {
+    if (used[h0] || !boundary(h0)) continue;
+    Cycle c;
+    int h = h0;
+    do {
+      used[h] = 1;
+      c.ring.push_back(map.vertices[map.source(h)]);
+      int g = he[h].next;
+      while (!boundary(g)) g = he[g ^ 1].next;
+      h = g;
+    } while (h != h0 && !used[h]);
+    c.area = signed_area(c.ring);
+    cycles[region[he[h0].face]].push_back(std::move(c));
+  }
+
+  HairMask mask;
+  for (auto& rc : cycles) {
+    if (rc.empty()) continue;
+    // The outer boundary turns counter-clockwise (positive area); in a region that touches itself
+    // at a vertex there may be more than one, the largest takes the holes.
+    std::sort(rc.begin(), rc.end(), [](const Cycle& a, const Cycle& b) { return a.area > b.area; });
+    size_t first_polygon = mask.polygons.size();
+    for (auto& c : rc) {
+      if (c.area > 0)
+        mask.polygons.push_back({std::move(c.ring), {}});
+      else if (mask.polygons.size() > first_polygon)
+        mask.polygons[first_polygon].holes.push_back(std::move(c.ring));
+    }
+  }
+  return mask;
+}
+
+std::vector<InkLine> chain_edges(const PlanarMap& map, const std::vector<int>& owner) {
+  const int edges = map.edge_count();
+  std::vector<std::vector<int>> at(map.vertices.size());  // selected halfedges leaving a vertex
+  for (int e = 0; e < edges; ++e) {
+    if (owner[e] < 0) continue;
+    at[map.source(2 * e)].push_back(2 * e);
+    at[map.source(2 * e + 1)].push_back(2 * e + 1);
+  }
+  auto pass_through = [&](int v) {
+    return at[v].size() == 2 && owner[at[v][0] / 2] == owner[at[v][1] / 2];
+  };
+  std::vector<char> used(edges, 0);
+  std::vector<InkLine> lines;
+  auto walk = [&](int h) {
+    InkLine line;
+    line.wisp = owner[h / 2];
+    line.points.push_back(map.vertices[map.source(h)]);
+    while (true) {
+      used[h / 2] = 1;
+      const int v = map.halfedges[h].target;
+      line.points.push_back(map.vertices[v]);
+      if (!pass_through(v)) break;
+      const int next = at[v][0] / 2 == h / 2 ? at[v][1] : at[v][0];
+      if (used[next / 2]) {
+        line.closed = true;
+        line.points.pop_back();
+        break;
+      }
+      h = next;
+    }
+    lines.push_back(std::move(line));
+  };
+  // Open chains start where the chaining stops; what is left are closed loops.
+  for (int v = 0; v < int(at.size()); ++v)
+    if (!pass_through(v))
+      for (int h : at[v])
+        if (!used[h / 2]) walk(h);
+  for (int e = 0; e < edges; ++e)
+    if (owner[e] >= 0 && !used[e]) walk(2 * e);
+  return lines;
+}
+
+}  // namespace wisp::vector

@@ -1,0 +1,60 @@
+// Private to vector/: the plain form of the CGAL arrangement. arrangement_cgal.cpp inserts the
+// flattened outline segments into an exact arrangement and copies its doubly connected edge list
+// out into these index-based arrays, so everything downstream (coverage, depth order, visibility,
+// hair mask, debug view) is ordinary C++ that compiles fast and never sees a CGAL type.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "vector/wisp.hpp"
+
+namespace wisp::vector {
+
+// One input segment of the arrangement: a piece of a flattened wisp outline, directed along the
+// outline (wisp interior on its left in CGAL's orientation), or a side of the view frame (wisp
+// -1). Outline parameter and depth are linear along it.
+struct OutlineSegment {
+  Eigen::Vector2d a, b;
+  int wisp = -1;
+  Side side = Side::Left;
+  double s0 = 0, s1 = 0;
+  double z0 = 0, z1 = 0;
+};
+
+// Index-based doubly connected edge list. Edge e owns halfedges 2e and 2e+1 (twins: h ^ 1). A
+// halfedge's face lies to its left; it runs from target(h ^ 1) to target(h).
+struct PlanarMap {
+  struct Halfedge {
+    int target = -1;
+    int next = -1;
+    int face = -1;
+  };
+  // A source of an edge: the input segment and whether it runs like the edge's halfedge 2e.
+  struct Source {
+    int segment = -1;
+    bool along = true;
+  };
+  struct Face {
+    int outer = -1;  // first halfedge of the outer boundary, -1 for the unbounded face
+    int holes_begin = 0, holes_end = 0;  // range in `holes` (first halfedge of each inner boundary)
+  };
+
+  std::vector<Eigen::Vector2d> vertices;  // rounded from the exact coordinates
+  std::vector<Halfedge> halfedges;
+  std::vector<int> source_begin;  // edge e's sources: sources[source_begin[e] .. [e+1])
+  std::vector<Source> sources;
+  std::vector<Face> faces;
+  std::vector<int> holes;
+  int unbounded_face = -1;
+
+  int edge_count() const { return int(halfedges.size() / 2); }
+  int source(int h) const { return halfedges[h ^ 1].target; }
+};
+
+// Inserts the segments (zero-length ones are skipped) with one sweep into an arrangement with
+// exact predicates and constructions. Deterministic: indices follow CGAL's construction order,
+// which depends only on the input.
+PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments);
+
+}  // namespace wisp::vector

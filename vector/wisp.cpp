@@ -1,0 +1,482 @@
+// Wisp construction: sample selection, centre spline, clamped extrusion, cubic outline fit and the
+// flattened band (sections) used by the arrangement.
+#include "vector/wisp.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wisp::vector {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+namespace {
+
+double cross(const Vector2d& a, const Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+[[noreturn]] void fail(const sim::ProjectedStrand& s, const std::string& what) {
+  throw std::invalid_argument("strand " + std::to_string(s.id) + ": " + what);
+}
+
+void check_strand(const sim::ProjectedStrand& s) {
+  const size_t n = s.pixel.size();
+  auto check_size = [&](size_t size, const char* name, bool may_be_empty) {
+    if (size != n && !(may_be_empty && size == 0))
+      fail(s, std::string(name) + " has " + std::to_string(size) + " entries, pixel has " +
+                  std::to_string(n));
+  };
+  check_size(s.depth.size(), "depth", false);
+  check_size(s.tangent.size(), "tangent", true);
+  check_size(s.visible.size(), "visible", true);
+  for (size_t i = 0; i < n; ++i) {
+    const std::string at = "sample " + std::to_string(i) + ": ";
+    if (!s.pixel[i].allFinite()) fail(s, at + "pixel is not finite");
+    if (!std::isfinite(s.depth[i]) || s.depth[i] <= 0)
+      fail(s, at + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
+    if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at + "tangent is not finite");
+  }
+}
+
+// The longest run [first, last] of usable samples, the one nearest the root on ties.
+std::pair<int, int> usable_run(const sim::ProjectedStrand& s, const WispStyle& style) {
+  auto usable = [&](size_t i) {
+    if (s.pixel[i].cwiseAbs().maxCoeff() > style.max_coordinate_px) return false;
+    return !style.trim_hidden || s.visible.empty() || s.visible[i] != 0;
+  };
+  std::pair<int, int> best{0, -1};
+  for (int i = 0, n = int(s.pixel.size()); i < n;) {
+    if (!usable(i)) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j + 1 < n && usable(j + 1)) ++j;
+    if (j - i > best.second - best.first) best = {i, j};
+    i = j + 1;
+  }
+  return best;
+}
+
+// One centre span with the depth and strand parameter at its ends (both linear in v).
+struct Span {
+  Cubic b;
+  double z0, z1, u0, u1;
+};
+
+constexpr int kWidthSamples = 16;  // per span, for the width limit table
+
+// The offset curves p(v) = B(v) + N(v) d_left(v) and B(v) - N(v) d_right(v) of each span.
+//
+// Width limit: an offset at distance d from a curve folds over itself (a swallowtail) once it
+// passes a centre of curvature of the curve nearby, not only its own (Faraj's loops on curly
+// hair). So each side's half-width at a point is capped by curvature_clamp times the distance
+// from the point to every centre of curvature that lies on that side within an arc length of
+// twice the unclamped width. At the point itself that is the radius of curvature; near a tight
+// crest it makes the inner side narrow gradually (the cap is 1-Lipschitz along the curve), while
+// the outer side keeps its full width. A second cap handles folds that no curvature sees in time
+// (a sharp V, neighbouring arches of a coil): half the gap to a part of the curve that faces this
+// side and is much nearer in space than along the curve. Self-crossings of the centre curve
+// itself (loops of a coil seen edge-on) are left to overlap: the arrangement counts windings.
+struct Extruder {
+  const std::vector<Span>& spans;
+  const WispStyle& style;
+  double focal_px;
+  std::vector<std::array<double, 2>> width;  // [span * kWidthSamples + j] = {left, right}
+
+  Extruder(const std::vector<Span>& s, const WispStyle& st, double f)
+      : spans(s), style(st), focal_px(f) {
+    limit_widths();
+  }
+
+  double depth(int i, double v) const { return spans[i].z0 + (spans[i].z1 - spans[i].z0) * v; }
+
+  // Unit direction of travel; at a cusp (a hairpin in the samples) B' vanishes and the limit
+  // direction is that of B''.
+  Vector2d direction(int i, double v) const {
+    const Cubic& c = spans[i].b;
+    const double scale = (c[3] - c[0]).norm() + (c[1] - c[0]).norm() + (c[2] - c[1]).norm();
+    Vector2d d = derivative(c, v);
+    if (d.norm() <= 1e-12 * scale) d = second_derivative(c, v) * (v < 0.5 ? 1 : -1);
+    if (d.norm() <= 1e-12 * scale) d = c[3] - c[0];
+    const double n = d.norm();
+    return n > 0 ? Vector2d(d / n) : Vector2d(1, 0);
+  }
+
+  Vector2d left_normal(int i, double v) const {
+    const Vector2d d = direction(i, v);
+    return {d.y(), -d.x()};
+  }
+
+  // Perspective width times the profile, before any limit.
+  double free_width(int i, double v) const {
+    const Span& s = spans[i];
+    const double h =
+        0.5 * style.width * focal_px / depth(i, v) * style.profile.at(s.u0 + (s.u1 - s.u0) * v);
+    return std::min(h, style.max_width_px);
+  }
+
+  void limit_widths() {
+    const int n = int(spans.size()) * kWidthSamples + 1;
+    std::vector<Vector2d> b(n), normal(n), centre(n);
+    std::vector<char> has_centre(n, 0);
+    std::vector<double> arc(n, 0), free(n);
+    for (int g = 0; g < n; ++g) {
+      const int i = std::min(g / kWidthSamples, int(spans.size()) - 1);
+      const double v = double(g - i * kWidthSamples) / kWidthSamples;
+      const Cubic& c = spans[i].b;
+      b[g] = eval(c, v);
+      normal[g] = left_normal(i, v);
+      free[g] = free_width(i, v);
+      if (g > 0) arc[g] = arc[g - 1] + (b[g] - b[g - 1]).norm();
+      const Vector2d d1 = derivative(c, v), d2 = second_derivative(c, v);
+      const double k = cross(d1, d2), speed2 = d1.squaredNorm();
+      // Centre of curvature B + |B'|^2 / (B' x B'') * perp(B'); a cusp is its own centre.
+      if (speed2 == 0) {
+        centre[g] = b[g], has_centre[g] = 1;
+      } else if (std::abs(k) > 1e-12 * speed2 * std::sqrt(speed2)) {
+        centre[g] = b[g] + speed2 / k * Vector2d(-d1.y(), d1.x());
+        has_centre[g] = 1;
+      }
+    }
+    width.assign(n, {0, 0});
+    for (int g = 0; g < n; ++g) {
+      std::array<double, 2> h = {free[g], free[g]};
+      // Centres of curvature on each side, within twice the free width along the curve.
+      for (int dir : {-1, +1}) {
+        for (int j = dir < 0 ? g : g + 1;
+             j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 2 * free[g]; j += dir) {
+          if (!has_centre[j]) continue;
+          const Vector2d to = centre[j] - b[g];
+          const int side = to.dot(normal[g]) > 0 ? 0 : 1;  // the left side faces +N
+          h[side] = std::min(h[side], style.curvature_clamp * to.norm());
+        }
+      }
+      // Folds: where the curve bends back (a sharp V, the next arch of a coil), a point of it
+      // ahead of this side (within 60 degrees of the normal) that is much nearer in space than
+      // along the curve; each of the two passes may take half the gap.
+      for (int dir : {-1, +1}) {
+        for (int j = g + dir; j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 8 * free[g];
+             j += dir) {
+          const Vector2d to = b[j] - b[g];
+          const double gap = to.norm(), along = to.dot(normal[g]);
+          if (std::abs(arc[j] - arc[g]) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
+          const int side = along > 0 ? 0 : 1;
+          h[side] = std::min(h[side], 0.5 * style.curvature_clamp * gap);
+        }
+      }
+      for (double& x : h) x = x < 1e-9 ? 0.0 : x;
+      width[g] = h;
+    }
+  }
+
+  // Half-width of side 0 (left) or 1 (right): monotone cubic (Fritsch-Carlson) interpolation of
+  // the table, C1 so the Hermite outline fits need few pieces, and never above its neighbours.
+  double half_width(int i, double v, int side) const {
+    const double x = std::clamp(v, 0.0, 1.0) * kWidthSamples;
+    const int j = std::min(int(x), kWidthSamples - 1);
+    const double f = x - j;
+    const int g = i * kWidthSamples + j, n = int(width.size());
+    auto w = [&](int k) { return width[std::clamp(k, 0, n - 1)][side]; };
+    auto slope = [&](int k) {
+      const double a = w(k) - w(k - 1), b = w(k + 1) - w(k);
+      return a * b <= 0 ? 0.0 : 2 * a * b / (a + b);  // harmonic mean, zero at extrema
+    };
+    const double y0 = w(g), y1 = w(g + 1), m0 = slope(g), m1 = slope(g + 1);
+    const double f2 = f * f, f3 = f2 * f;
+    return std::max(0.0, (2 * f3 - 3 * f2 + 1) * y0 + (f3 - 2 * f2 + f) * m0 +
+                             (-2 * f3 + 3 * f2) * y1 + (f3 - f2) * m1);
+  }
+
+  Vector2d offset(int i, double v, double sign) const {
+    return eval(spans[i].b, v) + sign * half_width(i, v, sign > 0 ? 0 : 1) * left_normal(i, v);
+  }
+
+  // dp/dv by finite differences that stay inside the span (the spline is only G1 across spans).
+  Vector2d offset_derivative(int i, double v, double sign) const {
+    const double h = 1e-6;
+    const double a = std::max(0.0, v - h), b = std::min(1.0, v + h);
+    return (offset(i, b, sign) - offset(i, a, sign)) / (b - a);
+  }
+
+  // Hermite cubic matching the offset's ends and end derivatives on [v0, v1].
+  Cubic hermite(int i, double v0, double v1, double sign) const {
+    const Vector2d p0 = offset(i, v0, sign), p3 = offset(i, v1, sign);
+    const double third = (v1 - v0) / 3;
+    return {p0, p0 + offset_derivative(i, v0, sign) * third,
+            p3 - offset_derivative(i, v1, sign) * third, p3};
+  }
+};
+
+// A piece of the band: the left and right outline cubics over [v0, v1] of one span, both in the
+// root-to-tip direction.
+struct Piece {
+  int span;
+  double v0, v1;
+  Cubic left, right;
+};
+
+void fit_pieces(const Extruder& ex, int span, double v0, double v1, int level,
+                std::vector<Piece>& out) {
+  Piece piece{span, v0, v1, ex.hermite(span, v0, v1, +1), ex.hermite(span, v0, v1, -1)};
+  if (level < 12) {
+    double error = 0;
+    for (double q : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+      const double v = v0 + (v1 - v0) * q;
+      error = std::max(error, (eval(piece.left, q) - ex.offset(span, v, +1)).norm());
+      error = std::max(error, (eval(piece.right, q) - ex.offset(span, v, -1)).norm());
+    }
+    if (error > ex.style.fit_tolerance_px) {
+      const double mid = 0.5 * (v0 + v1);
+      fit_pieces(ex, span, v0, mid, level + 1, out);
+      fit_pieces(ex, span, mid, v1, level + 1, out);
+      return;
+    }
+  }
+  out.push_back(piece);
+}
+
+Cubic reversed(const Cubic& c) {
+  return {c[3], c[2], c[1], c[0]};
+}
+
+double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+  const Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double l = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + l * ab - p).norm();
+}
+
+// Douglas-Peucker on three polylines at once: a section stays if dropping it would move the
+// left, right or centre polyline by more than `tolerance`. The ends always stay.
+std::vector<Section> simplify(const std::vector<Section>& dense, double tolerance) {
+  const int n = int(dense.size());
+  std::vector<char> keep(n, 0);
+  keep[0] = keep[n - 1] = 1;
+  std::vector<std::pair<int, int>> stack = {{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    double worst = tolerance;
+    int split = -1;
+    for (int j = a + 1; j < b; ++j) {
+      const Section &s = dense[j], &sa = dense[a], &sb = dense[b];
+      const double d = std::max({distance_to_segment(s.left, sa.left, sb.left),
+                                 distance_to_segment(s.right, sa.right, sb.right),
+                                 distance_to_segment(s.centre, sa.centre, sb.centre)});
+      if (d > worst) worst = d, split = j;
+    }
+    if (split < 0) continue;
+    keep[split] = 1;
+    stack.push_back({a, split});
+    stack.push_back({split, b});
+  }
+  std::vector<Section> out;
+  for (int j = 0; j < n; ++j)
+    if (keep[j]) out.push_back(dense[j]);
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(Side side) {
+  switch (side) {
+    case Side::Left:
+      return "left";
+    case Side::Tip:
+      return "tip";
+    case Side::Right:
+      return "right";
+    case Side::Root:
+      return "root";
+  }
+  return "?";
+}
+
+void validate(const WispStyle& style) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || std::isnan(v))
+      throw std::invalid_argument(std::string("wisp style: ") + name + " must be > 0, got " +
+                                  std::to_string(v));
+  };
+  positive(style.width, "width");
+  if (!std::isfinite(style.width)) throw std::invalid_argument("wisp style: width is not finite");
+  positive(style.max_width_px, "max_width_px");
+  positive(style.curvature_clamp, "curvature_clamp");
+  positive(style.fit_tolerance_px, "fit_tolerance_px");
+  positive(style.flatten_tolerance_px, "flatten_tolerance_px");
+  positive(style.max_coordinate_px, "max_coordinate_px");
+  if (style.max_pieces_per_cubic < 1 || style.max_pieces_per_cubic > 4096)
+    throw std::invalid_argument("wisp style: max_pieces_per_cubic must be in [1,4096]");
+  if (!(style.merge_distance_px >= 0))
+    throw std::invalid_argument("wisp style: merge_distance_px must be >= 0");
+  validate(style.profile);
+}
+
+std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_px,
+                               const WispStyle& style) {
+  check_strand(strand);
+  const int samples = int(strand.pixel.size());
+  if (samples < 2) return std::nullopt;
+  const auto [first, last] = usable_run(strand, style);
+  if (last <= first) return std::nullopt;
+
+  // Keep samples at least merge_distance apart; the tip sample always survives.
+  std::vector<int> kept = {first};
+  for (int i = first + 1; i <= last; ++i) {
+    if ((strand.pixel[i] - strand.pixel[kept.back()]).norm() > style.merge_distance_px)
+      kept.push_back(i);
+    else if (i == last && kept.size() > 1)
+      kept.back() = i;
+  }
+  if (kept.size() < 2) return std::nullopt;
+
+  Wisp w;
+  w.strand = strand.id;
+  w.first_sample = first;
+  w.last_sample = last;
+  std::vector<Vector2d> points;
+  for (int i : kept) points.push_back(strand.pixel[i]);
+  const std::vector<Cubic> cubics = catmull_rom_spans(points);
+  const int k = int(cubics.size());
+
+  auto sample_tangent = [&](int i) -> Vector3d {
+    return strand.tangent.empty() ? Vector3d::Zero() : strand.tangent[i];
+  };
+  auto strand_u = [&](int i) { return double(i) / (samples - 1); };
+  std::vector<Span> spans;
+  CentreSpline& c = w.centre;
+  for (int s = 0; s < k; ++s) {
+    const int a = kept[s], b = kept[s + 1];
+    spans.push_back({cubics[s], strand.depth[a], strand.depth[b], strand_u(a), strand_u(b)});
+    for (int j = 0; j < 3; ++j) {
+      const double f = j / 3.0;
+      c.points.push_back(cubics[s][j]);
+      c.depth.push_back(strand.depth[a] + (strand.depth[b] - strand.depth[a]) * f);
+      const Vector3d t = (1 - f) * sample_tangent(a) + f * sample_tangent(b);
+      c.tangent.push_back(t.norm() > 0 ? Vector3d(t.normalized()) : t);
+      c.strand_u.push_back(strand_u(a) + (strand_u(b) - strand_u(a)) * f);
+    }
+  }
+  c.points.push_back(cubics.back()[3]);
+  c.depth.push_back(strand.depth[last]);
+  c.tangent.push_back(sample_tangent(last));
+  c.strand_u.push_back(strand_u(last));
+
+  const Extruder ex(spans, style, focal_px);
+  for (int s = 0; s <= k; ++s) {
+    const int span = std::min(s, k - 1);
+    const double v = s < k ? 0.0 : 1.0;
+    w.half_width_left.push_back(ex.half_width(span, v, 0));
+    w.half_width_right.push_back(ex.half_width(span, v, 1));
+  }
+
+  std::vector<Piece> pieces;
+  for (int s = 0; s < k; ++s) fit_pieces(ex, s, 0, 1, 0, pieces);
+  const int m = int(pieces.size());
+  const bool tip_cap = pieces.back().left[3] != pieces.back().right[3];
+  const bool root_cap = pieces.front().left[0] != pieces.front().right[0];
+  const int cubic_count = 2 * m + tip_cap + root_cap;
+
+  // The outline path: left pieces, tip cap, right pieces reversed, root cap.
+  Outline& o = w.outline;
+  auto t_of = [&](const Piece& p, double q) { return (p.span + p.v0 + (p.v1 - p.v0) * q) / k; };
+  auto z_of = [&](const Piece& p, double q) { return ex.depth(p.span, p.v0 + (p.v1 - p.v0) * q); };
+  auto add_cubic = [&](const Cubic& cubic, Side side, double t0, double t1, double z0, double z1) {
+    if (o.points.empty()) {
+      o.points.push_back(cubic[0]);
+      o.t.push_back(t0);
+      o.depth.push_back(z0);
+    }
+    for (int j = 1; j <= 3; ++j) {
+      o.points.push_back(cubic[j]);
+      o.t.push_back(t0 + (t1 - t0) * j / 3);
+      o.depth.push_back(z0 + (z1 - z0) * j / 3);
+    }
+    o.side.push_back(side);
+  };
+  for (const Piece& p : pieces)
+    add_cubic(p.left, Side::Left, t_of(p, 0), t_of(p, 1), z_of(p, 0), z_of(p, 1));
+  const double z_tip = spans.back().z1, z_root = spans.front().z0;
+  if (tip_cap)
+    add_cubic(line_cubic(pieces.back().left[3], pieces.back().right[3]), Side::Tip, 1, 1, z_tip,
+              z_tip);
+  for (int j = m - 1; j >= 0; --j) {
+    const Piece& p = pieces[j];
+    add_cubic(reversed(p.right), Side::Right, t_of(p, 1), t_of(p, 0), z_of(p, 1), z_of(p, 0));
+  }
+  if (root_cap)
+    add_cubic(line_cubic(pieces.front().right[0], pieces.front().left[0]), Side::Root, 0, 0, z_root,
+              z_root);
+
+  // The band sections: dense uniform steps per piece within a quarter of the tolerance, then
+  // thinned by Douglas-Peucker on the left, right and centre polylines together (the remaining
+  // three quarters), so straight stretches cost few segments and tight curls many.
+  std::vector<Section> dense;
+  const double dense_tolerance = 0.25 * style.flatten_tolerance_px;
+  for (int j = 0; j < m; ++j) {
+    const Piece& p = pieces[j];
+    const int n = std::max(flatten_pieces(p.left, dense_tolerance, style.max_pieces_per_cubic),
+                           flatten_pieces(p.right, dense_tolerance, style.max_pieces_per_cubic));
+    const int right_index = m + tip_cap + (m - 1 - j);
+    for (int i = 0; i < n + (j == m - 1); ++i) {
+      const double q = double(i) / n;
+      const double v = p.v0 + (p.v1 - p.v0) * q;
+      Section sec;
+      sec.t = t_of(p, q);
+      sec.depth = ex.depth(p.span, v);
+      sec.centre = eval(spans[p.span].b, v);
+      sec.left = eval(p.left, q);
+      sec.right = eval(p.right, q);
+      sec.s_left = (j + q) / cubic_count;
+      sec.s_right = (right_index + 1 - q) / cubic_count;
+      dense.push_back(sec);
+    }
+  }
+  w.sections = simplify(dense, 0.75 * style.flatten_tolerance_px);
+  w.bounds.setEmpty();
+  for (const Section& s : w.sections) {
+    w.bounds.extend(s.left);
+    w.bounds.extend(s.right);
+  }
+  return w;
+}
+
+std::vector<Wisp> build_wisps(const sim::ProjectedFrame& frame, const WispStyle& style) {
+  validate(style);
+  if (!std::isfinite(frame.focal_px) || frame.focal_px <= 0)
+    throw std::invalid_argument("projected frame " + std::to_string(frame.frame) +
+                                ": focal_px must be finite and > 0");
+  std::vector<Wisp> wisps;
+  wisps.reserve(frame.strands.size());
+  for (const sim::ProjectedStrand& strand : frame.strands)
+    if (auto w = build_wisp(strand, frame.focal_px, style)) wisps.push_back(std::move(*w));
+  return wisps;
+}
+
+std::vector<OutlineVertex> outline_polygon(const Wisp& w) {
+  std::vector<OutlineVertex> poly;
+  auto add = [&](const Vector2d& p, double s, double t, double depth, Side side) {
+    if (!poly.empty() && poly.back().p == p) {
+      poly.back().side = side;  // the zero-length edge disappears; the next edge keeps its side
+      return;
+    }
+    poly.push_back({p, s, t, depth, side});
+  };
+  const auto& sec = w.sections;
+  const int n = int(sec.size()) - 1;
+  const bool tip_cap = sec[n].left != sec[n].right;
+  for (int i = 0; i < n; ++i) add(sec[i].left, sec[i].s_left, sec[i].t, sec[i].depth, Side::Left);
+  add(sec[n].left, sec[n].s_left, sec[n].t, sec[n].depth, tip_cap ? Side::Tip : Side::Right);
+  for (int i = n - (tip_cap ? 0 : 1); i >= 1; --i)
+    add(sec[i].right, sec[i].s_right, sec[i].t, sec[i].depth, Side::Right);
+  add(sec[0].right, sec[0].s_right, sec[0].t, sec[0].depth, Side::Root);
+  if (poly.size() > 1 && poly.back().p == poly.front().p) poly.pop_back();
+  return poly;
+}
+
+}  // namespace wisp::vector
