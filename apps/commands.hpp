@@ -10,5 +10,6 @@ namespace wisp::apps {
 
 void add_diffuse_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
+void add_render_command(CLI::App& app);
 
 }  // namespace wisp::apps

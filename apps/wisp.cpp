@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "wisp 0.1.0");
   wisp::apps::add_diffuse_command(app);
   wisp::apps::add_simulate_command(app);
+  wisp::apps::add_render_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

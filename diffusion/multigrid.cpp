@@ -90,7 +90,7 @@ class Multigrid {
   void relax_row(Level& L, int y, int x_parity, float* buf);
   void residual(int l);  // levels_[l].res = rhs - A e
   void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
-                   std::vector<float>& out);
+                   std::vector<float>& out, std::vector<double>* row_norms = nullptr);
   std::array<double, NC> residual_norms(int l);
   void restrict_residual(int l);  // levels_[l].res -> levels_[l+1].rhs
   void prolongate_add(int l);     // levels_[l].e += P levels_[l+1].e
@@ -104,6 +104,7 @@ class Multigrid {
                                          std::vector<float>& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
   double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
+  void observe(const std::vector<float>& residual_padded, const SolveStats& st) const;
   std::array<double, NC> dot(const std::vector<float>& a, const std::vector<float>& b) const;
 };
 
@@ -482,7 +483,8 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse) {
 // out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded.
 template <int NC>
 void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
-                                const std::vector<float>& e_planes, std::vector<float>& out) {
+                                const std::vector<float>& e_planes, std::vector<float>& out,
+                                std::vector<double>* row_norms) {
   Level& L = levels_[l];
   const size_t n = L.padded();
   const int s = L.stride, w = L.w;
@@ -513,6 +515,12 @@ void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
                    an[x] * e[x - s] + ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] +
                    asw[x] * e[x + s - 1] + ane[x] * e[x - s + 1];
         }
+        if (row_norms) {  // while the row is in cache
+          float sum = 0;
+#pragma omp simd reduction(+ : sum)
+          for (int x = 0; x < w; ++x) sum += r[x] * r[x];
+          (*row_norms)[size_t(y) * NC + c] = sum;
+        }
       }
     }
   });
@@ -526,20 +534,9 @@ void Multigrid<NC>::residual(int l) {
 // 2-norms of the residual per channel; rows are summed in order, whatever the thread count.
 template <int NC>
 std::array<double, NC> Multigrid<NC>::residual_norms(int l) {
-  residual(l);
-  const Level& L = levels_[l];
-  const size_t n = L.padded();
+  Level& L = levels_[l];
   std::vector<double> rows(size_t(L.h) * NC, 0.0);
-  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int c = 0; c < NC; ++c) {
-        const float* __restrict r = &L.res[c * n + L.at(0, y)];
-        float sum = 0;
-#pragma omp simd reduction(+ : sum)
-        for (int x = 0; x < L.w; ++x) sum += r[x] * r[x];
-        rows[size_t(y) * NC + c] = sum;
-      }
-  });
+  residual_of(l, &L.rhs, L.e, L.res, &rows);
   std::array<double, NC> norms{};
   for (int y = 0; y < L.h; ++y)
     for (int c = 0; c < NC; ++c) norms[c] += rows[size_t(y) * NC + c];
@@ -687,6 +684,7 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
     ++st.cycles;
     rel = relative(norms);
     st.residual_history.push_back(rel);
+    observe(r, st);
     // The recursive residual drifts from the true one in float32: when it claims convergence
     // (or has not improved for a while), confirm with the true residual and carry on from it,
     // restarting the directions, unless float32 precision is exhausted.
@@ -703,6 +701,18 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
   }
   L.e = x;
   return rel;
+}
+
+template <int NC>
+void Multigrid<NC>::observe(const std::vector<float>& padded, const SolveStats& st) const {
+  if (!options_.observer) return;
+  const Level& F = levels_[0];
+  const size_t n = size_t(F.w) * F.h, nf = F.padded();
+  std::vector<float> planes(n * NC);
+  for (int c = 0; c < NC; ++c)
+    for (int y = 0; y < F.h; ++y)
+      std::copy_n(&padded[c * nf + F.at(0, y)], F.w, &planes[c * n + size_t(y) * F.w]);
+  options_.observer(int(st.residual_history.size()) - 1, planes);
 }
 
 template <int NC>
@@ -816,6 +826,7 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
     }
     rel = relative(residual_norms(0));
     st.residual_history.push_back(rel);
+    observe(levels_[0].res, st);
   }
   while (rel > tolerance && st.cycles < options_.max_cycles) {
     vcycle(0);
@@ -823,6 +834,7 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
     const double prev = rel;
     rel = relative(residual_norms(0));
     st.residual_history.push_back(rel);
+    observe(levels_[0].res, st);
     // A cycle that gains less than 3x meets a mode the coarse grids cannot represent: from
     // here conjugate gradients, with the cycle as preconditioner, take over.
     if (options_.krylov && rel > 0.3 * prev && rel > tolerance)

@@ -26,6 +26,7 @@
 // defined value; they are reported in the statistics and set to 0.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "diffusion/problem.hpp"
@@ -44,6 +45,10 @@ struct SolverOptions {
   // preconditioner, which removes those modes in a few iterations. Off: V-cycles only.
   bool krylov = true;
   int max_levels = 0;  // 0: coarsen down to <= 64 points; otherwise at most this many levels
+  // Called after the FMG start and after every cycle with the entry of residual_history it
+  // matches and the residual b - A u at every pixel (channel planes of W*H; 0 on fixed pixels).
+  // For inspection tools; costs a copy per cycle when set.
+  std::function<void(int step, const std::vector<float>& residual)> observer;
 };
 
 struct SolveStats {

@@ -69,6 +69,9 @@ struct Resolver {
   std::vector<double> front_depth;
   std::vector<char> visible;  // per entry of map.sources
 
+  int n_wisps() const { return int(wisps.size()); }
+  bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
+
   template <class F>
   void for_each_ccb(int f, F&& fn) const {
     const PlanarMap::Face& face = map.faces[f];
@@ -105,7 +108,7 @@ struct Resolver {
             const int e = h / 2;
             for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
               const PlanarMap::Source& s = map.sources[i];
-              const int w = segments[s.segment].wisp;
+              const int w = segments[s.segment].wisp;  // occluders count like wisps here
               if (w < 0) continue;
               const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
               add_winding(c, w, along_h ? -1 : +1);
@@ -162,15 +165,21 @@ struct Resolver {
       if (cover[f].empty() && !options.debug_view) continue;
       sample[f] = interior_point(f);
       in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
-      if (cover[f].empty()) continue;
-      hair[f] = in_view[f];
-      // Front-most by depth at the sample point; ties go to the lower wisp index.
+      if (cover[f].empty() || cover[f].front().first >= n_wisps()) continue;  // no wisp
+      // Front-most by depth at the sample point; ties go to the lower wisp index. An occluder
+      // in front of every wisp makes the face its own: not hair.
       double best = INFINITY;
       for (const auto& [w, _] : cover[f]) {
-        const double z = band_depth(wisps[w], sample[f]).depth;
+        const double z = w < n_wisps() ? band_depth(wisps[w], sample[f]).depth
+                                       : options.occluders[w - n_wisps()].depth(sample[f]);
         if (z < best) best = z, front[f] = w;
       }
       front_depth[f] = best;
+      if (front[f] >= n_wisps()) {
+        front[f] = -1;
+        continue;
+      }
+      hair[f] = in_view[f];
     }
   }
 
@@ -189,7 +198,7 @@ struct Resolver {
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
         const int w = seg.wisp;
-        if (w < 0) continue;
+        if (!is_wisp(w)) continue;
         bool vis = (hair[fl] && front[fl] == w) || (hair[fr] && front[fr] == w);
         if (vis && winding(cover[fl], w) != 0 && winding(cover[fr], w) != 0) {
           const Vector2d m =
@@ -216,7 +225,7 @@ struct Resolver {
                      &b = map.vertices[map.halfedges[2 * e].target];
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        if (seg.wisp < 0) continue;
+        if (!is_wisp(seg.wisp)) continue;
         const double sa = s_at(seg, a), sb = s_at(seg, b);
         pieces[seg.wisp].push_back({std::min(sa, sb), std::max(sa, sb), visible[i] != 0});
       }
@@ -249,7 +258,7 @@ struct Resolver {
     int best = -1;
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
       const int w = segments[map.sources[i].segment].wisp;
-      if (visible[i] && w >= 0 && (best < 0 || w < best)) best = w;
+      if (visible[i] && is_wisp(w) && (best < 0 || w < best)) best = w;
     }
     return best;
   }
@@ -292,7 +301,8 @@ struct Resolver {
       if (face.outer >= 0) vf.outer = ring(face.outer);
       for (int i = face.holes_begin; i < face.holes_end; ++i)
         vf.holes.push_back(ring(map.holes[i]));
-      vf.cover = cover[f];
+      for (const auto& c : cover[f])
+        if (is_wisp(c.first)) vf.cover.push_back(c);
       vf.front = hair[f] ? front[f] : -1;
       vf.front_depth = front_depth[f];
       vf.sample = sample[f];
@@ -310,8 +320,10 @@ struct Resolver {
       ve.face_right = map.halfedges[2 * e + 1].face;
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        ViewEdgeSource s{seg.wisp, seg.side, 0, 0, visible[i] != 0};
-        if (seg.wisp >= 0) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
+        // Occluder k appears as source -2 - k.
+        ViewEdgeSource s{is_wisp(seg.wisp) || seg.wisp < 0 ? seg.wisp : -2 - (seg.wisp - n_wisps()),
+                         seg.side, 0, 0, visible[i] != 0};
+        if (is_wisp(seg.wisp)) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
         ve.sources.push_back(s);
       }
       const bool hl = hair[ve.face_left], hr = hair[ve.face_right];
@@ -354,6 +366,18 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
       const OutlineVertex &a = poly[i], &b = poly[(i + 1) % poly.size()];
       segments.push_back(
           {a.p, b.p, w, a.side, a.s, i + 1 < poly.size() ? b.s : 1.0, a.depth, b.depth});
+    }
+  }
+  for (size_t k = 0; k < options.occluders.size(); ++k) {
+    const Occluder& o = options.occluders[k];
+    if (o.ring.size() < 3 || !o.depth)
+      throw std::invalid_argument("arrangement: occluder " + std::to_string(k) +
+                                  " needs a ring of 3 or more points and a depth function");
+    for (size_t i = 0; i < o.ring.size(); ++i) {
+      if (!o.ring[i].allFinite())
+        throw std::invalid_argument("arrangement: occluder " + std::to_string(k) +
+                                    ": point " + std::to_string(i) + " is not finite");
+      segments.push_back({o.ring[i], o.ring[(i + 1) % o.ring.size()], int(wisps.size() + k)});
     }
   }
   if (options.clip_to_view) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -20,12 +21,24 @@
 
 namespace wisp::vector {
 
+// Something opaque that is not hair, in front of some wisps and behind others: the head and the
+// body. Its silhouette (a simple closed ring, either orientation) enters the arrangement; a face
+// inside it belongs to the occluder wherever the occluder is nearer the eye than every wisp
+// covering the face. Hair that passes behind it is then cut exactly along its silhouette.
+struct Occluder {
+  std::vector<Eigen::Vector2d> ring;
+  // Distance from the eye to the occluder's surface seen through a pixel; +infinity where the
+  // ray misses it. Called once per face inside the ring.
+  std::function<double(const Eigen::Vector2d&)> depth;
+};
+
 struct ArrangementOptions {
   // The image rectangle. With clipping on, its sides enter the arrangement: nothing outside
   // counts as hair or as visible, and wisps wholly outside are left out before the sweep.
   Eigen::AlignedBox2d view{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   bool clip_to_view = true;
   bool debug_view = false;  // fill WispArrangement::view
+  std::vector<Occluder> occluders;
 };
 
 // A polygon with holes, vertices in pixels. The outer boundary turns counter-clockwise in (x, y)

@@ -26,7 +26,7 @@ struct ViewFace {
 
 // One outline piece along an edge. Outline parameters s0 -> s1 follow the edge from `a` to `b`.
 struct ViewEdgeSource {
-  int wisp = -1;  // -1: a side of the view frame
+  int wisp = -1;  // -1: a side of the view frame; -2 - k: occluder k
   Side side = Side::Left;
   double s0 = 0, s1 = 0;
   bool visible = false;

@@ -1,0 +1,51 @@
+// One frame of the main job, from projected strands to a finished picture:
+//   wisps (vector/) -> arrangement: visibility, hair mask (vector/, CGAL) -> diffusion curves
+//   of the visible outline pieces (vector/hair_curves) -> rasterize + multigrid solve
+//   (diffusion/, warm-started from the previous frame) -> layers of an io::FramePicture.
+// Used by `wisp render` for every frame and by the inspector for the one it shows.
+#pragma once
+
+#include <vector>
+
+#include "diffusion/multigrid.hpp"
+#include "io/frame.hpp"
+#include "sim/projected.hpp"
+#include "vector/arrangement.hpp"
+#include "vector/hair_style.hpp"
+
+namespace wisp::apps {
+
+struct FrameSetup {
+  vector::HairStyle style;
+  diffusion::SolverOptions solver;
+  io::Rgb background{1, 1, 1};
+  bool debug_view = false;   // keep the arrangement's debug view (inspector)
+  bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
+};
+
+// Milliseconds per stage.
+struct FrameTimings {
+  double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
+};
+
+struct FrameResult {
+  io::FramePicture picture;
+  std::vector<vector::Wisp> wisps;
+  vector::WispArrangement arrangement;
+  std::vector<diffusion::DiffusionCurve> curves;
+  diffusion::Problem problem;     // the rasterized constraints (inspector)
+  diffusion::SolveStats solve;
+  std::vector<float> solution;    // the solved RGB planes: the next frame's warm start
+  FrameTimings time;
+};
+
+// `body`: the head and body drawn under the hair; `occluders`: the same as occluders of the hair
+// (apps/body_occluders.hpp). With occluders every strand becomes a whole wisp and the
+// arrangement cuts it along their silhouettes, so hair slides behind the head continuously
+// instead of losing whole samples; without, wisps keep the samples the camera marked visible.
+// `warm_start`: the previous frame's solution (same size) or null.
+FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyPolygon> body,
+                         std::vector<vector::Occluder> occluders, const FrameSetup& setup,
+                         const std::vector<float>* warm_start);
+
+}  // namespace wisp::apps

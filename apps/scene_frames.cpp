@@ -1,0 +1,81 @@
+// Scene -> projected frames and bodies (see scene_frames.hpp).
+#include "apps/scene_frames.hpp"
+
+#include "apps/body_occluders.hpp"
+
+#include <regex>
+#include <stdexcept>
+
+#include "io/anim_file.hpp"
+#include "sim/camera.hpp"
+#include "sim/simulate.hpp"
+
+namespace wisp::apps {
+
+SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
+                              const SceneFramesOptions& options) {
+  SceneFrames out;
+  out.scene = io::load_scene(scene_path);
+  io::Scene& scene = out.scene;
+  if (options.width > 0 && options.height > 0) {
+    scene.camera.width = options.width;
+    scene.camera.height = options.height;
+  }
+  if (!options.anim.empty()) {
+    out.anim = io::read_animation(options.anim);
+  } else {
+    const sim::SimSetup setup = io::load_sim_setup(scene);
+    out.anim = sim::simulate(setup, options.sim_progress);
+  }
+
+  // In order: each frame's head occlusion starts from the previous frame's (hysteresis).
+  sim::Projector projector(out.anim.head, scene.camera, io::projector_options(scene));
+  out.projected.reserve(out.anim.frames.size());
+  for (const sim::StrandFrame& f : out.anim.frames) out.projected.push_back(projector.project(f));
+
+  const sim::BodyParams body = io::body_params(scene);
+  if (body.head || body.neck || body.torso)
+    out.body = std::make_shared<const sim::BodyModel>(out.anim.head, body);
+  return out;
+}
+
+FrameSetup frame_setup(const io::Scene& scene) {
+  FrameSetup setup;
+  setup.style = scene.style;
+  setup.solver.tolerance = scene.render.solver_tolerance;
+  setup.background = scene.render.background_color;
+  return setup;
+}
+
+std::vector<io::BodyPolygon> frame_body(const SceneFrames& frames, int k) {
+  std::vector<io::BodyPolygon> out;
+  if (!frames.body) return out;
+  const io::Scene& scene = frames.scene;
+  const sim::ProjectedBody body = frames.body->project(
+      frames.anim.frames.at(k).head, sim::Camera::look_at(scene.camera), scene.light_dir);
+  const io::Rgb skin = scene.render.skin_color;
+  const io::Rgb shadow = skin * 0.72f;
+  out.reserve(body.triangles.size());
+  for (const sim::BodyTriangle& t : body.triangles)
+    out.push_back({{t.p[0], t.p[1], t.p[2]}, t.shade > 0.45f ? skin : shadow});
+  return out;
+}
+
+std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) {
+  if (!frames.body) return {};
+  return body_occluders(*frames.body, frames.anim.frames.at(k).head,
+                        sim::Camera::look_at(frames.scene.camera),
+                        frames.scene.style.geometry.width);
+}
+
+std::pair<int, int> parse_size(const std::string& option, const std::string& text) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
+    throw std::invalid_argument(option + ": expected WxH, for example 512x512, got '" + text + "'");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw std::invalid_argument(option + " " + text + ": each side must be between 1 and 16384");
+  return {w, h};
+}
+
+}  // namespace wisp::apps

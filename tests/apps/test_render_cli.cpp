@@ -1,0 +1,226 @@
+// `wisp render` end to end on the default scene at 256x256: every output valid, PNG and SVG
+// agree, hair where the strands are and in the style's colours, deterministic, resumable,
+// coherent over time, and bad input refused cleanly.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "io/anim_file.hpp"
+#include "io/scene.hpp"
+#include "run_command.hpp"
+#include "sim/camera.hpp"
+
+using wisp::test::fresh_folder;
+using wisp::test::run_command;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kWisp = WISP_BIN_DIR "/wisp";
+const std::string kScene = WISP_SOURCE_DIR "/data/scenes/default.json";
+
+std::string frame(const std::string& dir, int k, const char* prefix = "frame_",
+                  const char* ext = "png") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "/%s%04d.%s", prefix, k, ext);
+  return dir + buf;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The default scene simulated once for all tests of this file.
+const std::string& animation() {
+  static const std::string path = [] {
+    const std::string dir = fresh_folder("render_anim");
+    const std::string wsim = dir + "/default.wsim";
+    const auto r = run_command(kWisp + " simulate " + kScene + " -o " + wsim + " -q");
+    REQUIRE(r.exit_code == 0);
+    return wsim;
+  }();
+  return path;
+}
+
+std::string render(const std::string& dir, const std::string& extra = "") {
+  const auto r = run_command(kWisp + " render " + kScene + " -o " + dir + " --size 256x256 --anim " +
+                             animation() + " -q " + extra);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  return dir;
+}
+
+double iou(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat both, either;
+  cv::bitwise_and(a, b, both);
+  cv::bitwise_or(a, b, either);
+  const double u = cv::countNonZero(either);
+  return u > 0 ? cv::countNonZero(both) / u : 1.0;
+}
+
+}  // namespace
+
+TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "[cli][render]") {
+  const std::string dir = render(fresh_folder("render_outputs"), "--frames 0:6 --masks");
+  const wisp::io::Scene scene = wisp::io::load_scene(kScene);
+  const wisp::sim::Animation anim = wisp::io::read_animation(animation());
+  wisp::io::Scene small = scene;
+  small.camera.width = small.camera.height = 256;
+  wisp::sim::Projector projector(anim.head, small.camera);
+
+  for (int k = 0; k < 6; ++k) {
+    INFO("frame " << k);
+    const cv::Mat png = cv::imread(frame(dir, k), cv::IMREAD_COLOR);
+    REQUIRE(png.cols == 256);
+    REQUIRE(png.rows == 256);
+    const cv::Mat mask = cv::imread(frame(dir, k, "mask_"), cv::IMREAD_GRAYSCALE);
+    REQUIRE(mask.cols == 256);
+    CHECK(cv::countNonZero(mask > 127) > 2000);  // there is hair
+
+    // The SVG parses and rasterises as a whole, and its hair layer (shown alone: background and
+    // body hidden) covers the region of the PNG's hair mask.
+    const std::string svg = frame(dir, k, "frame_", "svg");
+    REQUIRE(run_command("rsvg-convert " + svg + " -o " + dir + "/svg_all.png").exit_code == 0);
+    CHECK(cv::imread(dir + "/svg_all.png").cols == 256);
+    std::string text = read_file(svg);
+    for (const std::string id : {"<rect id=\"background\"", "<g id=\"body\""})
+      text.replace(text.find(id), id.size(), id + " style=\"display:none\"");
+    std::ofstream(dir + "/hair_only.svg") << text;
+    const std::string svg_hair = dir + "/svg_hair.png";
+    const auto r = run_command("rsvg-convert " + dir + "/hair_only.svg -o " + svg_hair);
+    REQUIRE(r.exit_code == 0);
+    cv::Mat svg_rgba = cv::imread(svg_hair, cv::IMREAD_UNCHANGED);
+    REQUIRE(svg_rgba.channels() == 4);
+    cv::Mat svg_alpha;
+    cv::extractChannel(svg_rgba, svg_alpha, 3);
+    CHECK(iou(svg_alpha > 127, mask > 127) >= 0.98);
+
+    // Hair lies inside the hull of the projected strands (grown by the widest wisp).
+    const wisp::sim::ProjectedFrame pf = projector.project(anim.frames[k]);
+    std::vector<cv::Point2f> samples;
+    double widest = 0;
+    for (const auto& s : pf.strands)
+      for (size_t i = 0; i < s.pixel.size(); ++i) {
+        samples.emplace_back(float(s.pixel[i].x()), float(s.pixel[i].y()));
+        widest = std::max(widest, 0.5 * scene.style.geometry.width * pf.focal_px / s.depth[i]);
+      }
+    std::vector<cv::Point> hull;
+    std::vector<cv::Point2f> hullf;
+    cv::convexHull(samples, hullf);
+    for (const auto& p : hullf) hull.emplace_back(int(std::lround(p.x)), int(std::lround(p.y)));
+    cv::Mat inside = cv::Mat::zeros(256, 256, CV_8U);
+    cv::fillConvexPoly(inside, hull, 255);
+    cv::dilate(inside, inside, cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                                                         cv::Size(int(2 * widest) + 3, int(2 * widest) + 3)));
+    cv::Mat outside_hull;
+    cv::bitwise_and(mask > 0, ~inside, outside_hull);
+    CHECK(cv::countNonZero(outside_hull) == 0);
+
+    // Fully covered hair pixels show colours within the range of the style's colours.
+    const auto& st = scene.style;
+    for (int c = 0; c < 3; ++c) {
+      const float lo = std::min({st.hair[c], st.shadow[c], st.highlight[c]});
+      const float hi = std::max({st.hair[c], st.shadow[c], st.highlight[c]});
+      double vmin, vmax;
+      std::vector<cv::Mat> ch;
+      cv::split(png, ch);
+      cv::minMaxLoc(ch[2 - c], &vmin, &vmax, nullptr, nullptr, mask == 255);
+      CHECK(vmin >= lo * 255 - 1);
+      CHECK(vmax <= hi * 255 + 1);
+    }
+  }
+  cv::VideoCapture video(dir + "/preview.mp4");
+  REQUIRE(video.isOpened());
+  int frames = 0;
+  for (cv::Mat img; video.read(img);) ++frames;
+  CHECK(frames == 6);
+  CHECK(cv::imread(dir + "/contact.png").cols > 256);
+  std::ifstream in(dir + "/stats.json");
+  const auto stats = nlohmann::json::parse(in);
+  CHECK(stats["frames"].size() == 6);
+  CHECK(stats["frames"][0]["wisps"].get<int>() > 50);
+  CHECK(stats["frames"][0]["solver_converged"] == true);
+  CHECK(stats["stage_ms_median"]["solve"].get<double>() > 0);
+}
+
+TEST_CASE("wisp render is deterministic, with 1 or 2 threads", "[cli][render]") {
+  const std::string a = render(fresh_folder("render_det_a"), "--frames 0:4 --threads 1");
+  const std::string b = render(fresh_folder("render_det_b"), "--frames 0:4 --threads 2");
+  const std::string c = render(fresh_folder("render_det_c"), "--frames 0:4 --threads 2");
+  for (int k = 0; k < 4; ++k) {
+    CHECK(read_file(frame(a, k)) == read_file(frame(b, k)));
+    CHECK(read_file(frame(b, k)) == read_file(frame(c, k)));
+    CHECK(read_file(frame(a, k, "frame_", "svg")) == read_file(frame(b, k, "frame_", "svg")));
+  }
+}
+
+TEST_CASE("a killed render resumes to the same files as an uninterrupted one", "[cli][render]") {
+  const std::string whole = render(fresh_folder("render_whole"), "--frames 0:12");
+  // Interrupted after frame 4: frames 0-4 exist, frame 5 was being written (a stale temporary).
+  const std::string part = render(fresh_folder("render_part"), "--frames 0:5");
+  std::ofstream(part + "/.frame_0005.partial-999999.png") << "half a frame";
+  render(part, "--frames 0:12");
+  CHECK(!fs::exists(part + "/.frame_0005.partial-999999.png"));
+  for (int k = 0; k < 12; ++k) {
+    INFO("frame " << k);
+    CHECK(read_file(frame(whole, k)) == read_file(frame(part, k)));
+    CHECK(read_file(frame(whole, k, "frame_", "svg")) == read_file(frame(part, k, "frame_", "svg")));
+  }
+  // A later run skips what exists; --force renders again, to the same bytes.
+  const std::string before = read_file(frame(part, 3));
+  const auto r = run_command(kWisp + " render " + kScene + " -o " + part +
+                             " --size 256x256 --anim " + animation() + " --frames 0:12 --force -q");
+  CHECK(r.exit_code == 0);
+  CHECK(read_file(frame(part, 3)) == before);
+}
+
+TEST_CASE("hair does not pop between frames of a slow turn", "[cli][render]") {
+  const std::string dir = render(fresh_folder("render_coherence"), "--frames 0:24 --masks");
+  std::vector<double> change;
+  cv::Mat prev;
+  for (int k = 0; k < 24; ++k) {
+    cv::Mat img = cv::imread(frame(dir, k), cv::IMREAD_COLOR), mask = cv::imread(frame(dir, k, "mask_"), cv::IMREAD_GRAYSCALE);
+    img.convertTo(img, CV_32FC3);
+    if (!prev.empty()) {
+      cv::Mat diff;
+      cv::absdiff(img, prev, diff);
+      cv::Mat hair = mask > 0;
+      change.push_back(cv::mean(diff, hair)[0] + cv::mean(diff, hair)[1] + cv::mean(diff, hair)[2]);
+    }
+    prev = img;
+  }
+  std::vector<double> sorted = change;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (size_t i = 0; i < change.size(); ++i) {
+    INFO("frames " << i << " -> " << i + 1 << ": " << change[i] << " (median " << median << ")");
+    CHECK(change[i] <= 3 * median);
+  }
+}
+
+TEST_CASE("wisp render refuses bad input with one line and exit code 2", "[cli][render]") {
+  const std::string dir = fresh_folder("render_bad");
+  std::ofstream(dir + "/bad.json") << R"({"hair": {"count": -3}})";
+  const struct {
+    std::string args, expected;
+  } cases[] = {
+      {dir + "/bad.json -o " + dir + "/out", "hair.count"},
+      {kScene + " -o /proc/wisp-out --anim " + animation(), "/proc/wisp-out"},
+      {kScene + " -o " + dir + "/out --anim " + animation() + " --frames 90:120", "has 97 frames"},
+      {kScene + " -o " + dir + "/out --frames 5:2", "greater than"},
+      {kScene + " -o " + dir + "/out --size 0x9", "between 1 and 16384"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.args);
+    const auto r = run_command(kWisp + " render " + c.args + " -q");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains(c.expected));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    CHECK(!fs::exists(dir + "/out/frame_0000.png"));
+  }
+}
