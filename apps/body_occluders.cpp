@@ -93,9 +93,10 @@ struct Surface {
   // Distance along the eye ray through pixel p to the nearest triangle (Moller-Trumbore).
   double depth(const Vector2d& p) const {
     if (!box.contains(p)) return INFINITY;
-    const Vector3d dir = (camera.forward + camera.right * ((p.x() - 0.5 * camera.width) / camera.focal_px) -
-                          camera.up * ((p.y() - 0.5 * camera.height) / camera.focal_px))
-                             .normalized();
+    const Vector3d dir =
+        (camera.forward + camera.right * ((p.x() - 0.5 * camera.width) / camera.focal_px) -
+         camera.up * ((p.y() - 0.5 * camera.height) / camera.focal_px))
+            .normalized();
     double best = INFINITY;
     const auto& bucket = grid[size_t(cell(p.y(), box.min().y(), box.max().y())) * cells +
                               cell(p.x(), box.min().x(), box.max().x())];

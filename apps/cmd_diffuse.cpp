@@ -39,15 +39,16 @@ void run_diffuse(const DiffuseArgs& a) {
   const auto t_start = std::chrono::steady_clock::now();
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
-    threads = std::make_unique<tbb::global_control>(
-        tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                    size_t(a.threads));
 
   // Arguments are checked before any work, so that their errors come first and alone.
   int width = 0, height = 0;
   if (!a.size.empty()) {
     std::smatch m;
     if (!std::regex_match(a.size, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
-      throw std::invalid_argument("--size: expected WxH, for example 512x512, got '" + a.size + "'");
+      throw std::invalid_argument("--size: expected WxH, for example 512x512, got '" + a.size +
+                                  "'");
     width = std::stoi(m[1]);
     height = std::stoi(m[2]);
     check_side(width, "--size");
@@ -73,9 +74,11 @@ void run_diffuse(const DiffuseArgs& a) {
   diffusion::SolverOptions solver;
   solver.tolerance = a.tolerance;
   diffusion::RenderStats st;
-  const diffusion::Image image = diffusion::render_drawing(file.drawing, width, height, solver, &st);
+  const diffusion::Image image =
+      diffusion::render_drawing(file.drawing, width, height, solver, &st);
   if (!st.solver.converged)
-    std::fprintf(stderr, "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
+    std::fprintf(stderr,
+                 "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
                  st.solver.final_residual, a.tolerance);
 
   t0 = std::chrono::steady_clock::now();
@@ -91,9 +94,9 @@ void run_diffuse(const DiffuseArgs& a) {
     j["height"] = height;
     j["curves"] = file.drawing.curves.size();
     j["warnings"] = file.warnings;
-    j["times_ms"] = {{"read", read_ms},        {"rasterize", st.rasterize_ms},
-                     {"solve", st.solve_ms},   {"blur", st.blur_ms},
-                     {"write", write_ms},      {"total", ms_since(t_start)}};
+    j["times_ms"] = {{"read", read_ms},      {"rasterize", st.rasterize_ms},
+                     {"solve", st.solve_ms}, {"blur", st.blur_ms},
+                     {"write", write_ms},    {"total", ms_since(t_start)}};
     j["solver"] = {{"levels", st.solver.levels},
                    {"cycles", st.solver.cycles},
                    {"setup_ms", st.solver.setup_ms},

@@ -83,15 +83,18 @@ void run_render(const RenderArgs& a) {
   if (!a.frames.empty()) {
     std::smatch m;
     if (!std::regex_match(a.frames, m, std::regex(R"((\d{1,6}):(\d{1,6}))")))
-      throw std::invalid_argument("--frames: expected A:B (frames A to B-1), got '" + a.frames + "'");
+      throw std::invalid_argument("--frames: expected A:B (frames A to B-1), got '" + a.frames +
+                                  "'");
     first = std::stoi(m[1]);
     last = std::stoi(m[2]);
     if (last <= first)
       throw std::invalid_argument("--frames " + a.frames + ": B must be greater than A");
   }
-  const auto [width, height] = a.size.empty() ? std::pair<int, int>{0, 0} : parse_size("--size", a.size);
+  const auto [width, height] =
+      a.size.empty() ? std::pair<int, int>{0, 0} : parse_size("--size", a.size);
   if (a.svg_style != "embedded" && a.svg_style != "flat")
-    throw std::invalid_argument("--svg-style: expected 'embedded' or 'flat', got '" + a.svg_style + "'");
+    throw std::invalid_argument("--svg-style: expected 'embedded' or 'flat', got '" + a.svg_style +
+                                "'");
 
   // Validate the scene before touching the output folder.
   (void)io::load_scene(a.scene);
@@ -133,8 +136,8 @@ void run_render(const RenderArgs& a) {
   if (last < 0) last = n;
   if (first >= n || last > n)
     throw std::invalid_argument("--frames " + std::to_string(first) + ":" + std::to_string(last) +
-                                ": the animation has " + std::to_string(n) + " frames (0:" +
-                                std::to_string(n) + ")");
+                                ": the animation has " + std::to_string(n) +
+                                " frames (0:" + std::to_string(n) + ")");
 
   FrameSetup setup = frame_setup(scene);
   setup.flat_regions = a.svg_style == "flat";
@@ -152,7 +155,8 @@ void run_render(const RenderArgs& a) {
   std::vector<int> blocks;
   for (int b = first / block; b * block < last; ++b) {
     bool any = false;
-    for (int k = std::max(first, b * block); k < std::min(last, (b + 1) * block); ++k) any |= todo[k];
+    for (int k = std::max(first, b * block); k < std::min(last, (b + 1) * block); ++k)
+      any |= todo[k];
     if (any) blocks.push_back(b);
   }
 
@@ -169,9 +173,9 @@ void run_render(const RenderArgs& a) {
     std::vector<float> warm;
     for (int k = b * block; k < end; ++k) {
       const auto t_frame = Clock::now();
-      FrameResult r = render_frame(frames.projected[k], frame_body(frames, k),
-                                   frame_occluders(frames, k), setup,
-                                   warm.empty() ? nullptr : &warm);
+      FrameResult r =
+          render_frame(frames.projected[k], frame_body(frames, k), frame_occluders(frames, k),
+                       setup, warm.empty() ? nullptr : &warm);
       warm = std::move(r.solution);
       if (!todo[k]) continue;  // solved only to warm-start the next frame of the block
       const auto t_write = Clock::now();
@@ -181,26 +185,25 @@ void run_render(const RenderArgs& a) {
         io::write_mask_png(r.picture.mask, r.picture.width, r.picture.height,
                            out / ("mask" + frame_name(k, "png").substr(5)));
       const double write_ms = ms_since(t_write);
-      nlohmann::json j = {
-          {"frame", k},
-          {"time", anim.frames[k].time},
-          {"strands", frames.projected[k].strands.size()},
-          {"wisps", r.wisps.size()},
-          {"visible_curves", r.curves.size()},
-          {"faces", r.arrangement.stats.faces},
-          {"edges", r.arrangement.stats.edges},
-          {"intersections", r.arrangement.stats.intersections},
-          {"solver_cycles", r.solve.cycles},
-          {"solver_residual", r.solve.final_residual},
-          {"solver_converged", r.solve.converged || r.curves.empty()},
-          {"ms",
-           {{"wisps", r.time.wisps},
-            {"arrangement", r.time.arrangement},
-            {"curves", r.time.curves},
-            {"rasterize", r.time.rasterize},
-            {"solve", r.time.solve},
-            {"write", write_ms},
-            {"frame", ms_since(t_frame)}}}};
+      nlohmann::json j = {{"frame", k},
+                          {"time", anim.frames[k].time},
+                          {"strands", frames.projected[k].strands.size()},
+                          {"wisps", r.wisps.size()},
+                          {"visible_curves", r.curves.size()},
+                          {"faces", r.arrangement.stats.faces},
+                          {"edges", r.arrangement.stats.edges},
+                          {"intersections", r.arrangement.stats.intersections},
+                          {"solver_cycles", r.solve.cycles},
+                          {"solver_residual", r.solve.final_residual},
+                          {"solver_converged", r.solve.converged || r.curves.empty()},
+                          {"ms",
+                           {{"wisps", r.time.wisps},
+                            {"arrangement", r.time.arrangement},
+                            {"curves", r.time.curves},
+                            {"rasterize", r.time.rasterize},
+                            {"solve", r.time.solve},
+                            {"write", write_ms},
+                            {"frame", ms_since(t_frame)}}}};
       std::lock_guard<std::mutex> lock(mutex);
       records.push_back({k, std::move(j)});
       if (bar) bar->update(++rendered);
@@ -276,7 +279,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->outdir, "Output folder")->required();
   cmd->add_option("--frames", args->frames, "Frames A to B-1, as A:B (default: all)");
   cmd->add_option("--size", args->size, "Image size WxH (default: the scene camera's)");
-  cmd->add_option("--anim", args->anim, "Render this saved animation (.wsim) instead of simulating");
+  cmd->add_option("--anim", args->anim,
+                  "Render this saved animation (.wsim) instead of simulating");
   cmd->add_option("--svg-style", args->svg_style,
                   "embedded: shading as an image clipped by the silhouette; flat: a gradient "
                   "path per visible wisp region");

@@ -39,22 +39,38 @@ std::uint32_t argb(const Rgb8& c) {
   return 0xff000000u | std::uint32_t(c[0]) << 16 | std::uint32_t(c[1]) << 8 | c[2];
 }
 
-std::uint8_t to_byte(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); }
+std::uint8_t to_byte(float v) {
+  return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+}
 
 Rgb8 hsv(double h, double s, double v) {
   h = (h - std::floor(h)) * 6;
   const int i = int(h) % 6;
-  const double f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  const double f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f),
+               t = v * (1 - s * (1 - f));
   double r = v, g = t, b = p;
   switch (i) {
-    case 1: r = q, g = v, b = p; break;
-    case 2: r = p, g = v, b = t; break;
-    case 3: r = p, g = q, b = v; break;
-    case 4: r = t, g = p, b = v; break;
-    case 5: r = v, g = p, b = q; break;
-    default: break;
+    case 1:
+      r = q, g = v, b = p;
+      break;
+    case 2:
+      r = p, g = v, b = t;
+      break;
+    case 3:
+      r = p, g = q, b = v;
+      break;
+    case 4:
+      r = t, g = p, b = v;
+      break;
+    case 5:
+      r = v, g = p, b = q;
+      break;
+    default:
+      break;
   }
-  const auto byte = [](double x) { return std::uint8_t(std::lround(std::clamp(x, 0.0, 1.0) * 255)); };
+  const auto byte = [](double x) {
+    return std::uint8_t(std::lround(std::clamp(x, 0.0, 1.0) * 255));
+  };
   return {byte(r), byte(g), byte(b)};
 }
 
@@ -125,7 +141,8 @@ struct Pen {
   void bezier(const std::vector<Vec2>& points) const {
     if (points.size() < 4) return;
     move(points[0]);
-    for (size_t i = 1; i + 2 < points.size(); i += 3) curve(points[i], points[i + 1], points[i + 2]);
+    for (size_t i = 1; i + 2 < points.size(); i += 3)
+      curve(points[i], points[i + 1], points[i + 2]);
   }
   void polyline(const std::vector<Vec2>& points, bool closed) const {
     if (points.empty()) return;
@@ -177,8 +194,10 @@ void draw_constraints(cairo_t* cr, const InspectFrame& f, const ViewTransform& t
   // Cut links (curves cross them: no colour flows there) as the pixel borders they close, once
   // pixels are big enough to see them.
   if (t.zoom < 6) return;
-  const Vec2 lo = t.to_frame({0, 0}), hi = t.to_frame({double(canvas.width), double(canvas.height)});
-  const int x0 = std::max(0, int(std::floor(lo.x())) - 1), y0 = std::max(0, int(std::floor(lo.y())) - 1);
+  const Vec2 lo = t.to_frame({0, 0}),
+             hi = t.to_frame({double(canvas.width), double(canvas.height)});
+  const int x0 = std::max(0, int(std::floor(lo.x())) - 1),
+            y0 = std::max(0, int(std::floor(lo.y())) - 1);
   const int x1 = std::min(p.width, int(std::ceil(hi.x())) + 1);
   const int y1 = std::min(p.height, int(std::ceil(hi.y())) + 1);
   const Pen pen{cr, t};
@@ -296,9 +315,13 @@ void draw_ink(const Pen& pen, const InspectFrame& f) {
 
 }  // namespace
 
-const std::array<LayerInfo, kLayerCount>& layer_table() { return kLayers; }
+const std::array<LayerInfo, kLayerCount>& layer_table() {
+  return kLayers;
+}
 
-const LayerInfo& layer_info(Layer layer) { return kLayers[size_t(layer)]; }
+const LayerInfo& layer_info(Layer layer) {
+  return kLayers[size_t(layer)];
+}
 
 std::vector<Layer> parse_layers(const std::string& list) {
   std::vector<Layer> out;
@@ -324,7 +347,9 @@ int residual_step(const InspectFrame& frame, const LayerSet& layers) {
   return layers.residual_step < 0 ? steps - 1 : std::min(layers.residual_step, steps - 1);
 }
 
-Rgb8 wisp_color(int wisp) { return hsv(0.618033988749895 * wisp, 0.75, 1.0); }
+Rgb8 wisp_color(int wisp) {
+  return hsv(0.618033988749895 * wisp, 0.75, 1.0);
+}
 
 Rgb8 face_color(int front, int number) {
   Rgb8 c = hsv(0.618033988749895 * front, 0.6, 0.85);
@@ -358,8 +383,8 @@ Rgb8 coverage_color(int count) {
 
 Rgb8 residual_color(float residual) {
   static const std::array<Rgb8, 256> inferno = colormap(cv::COLORMAP_INFERNO);
-  const double t = (std::log10(double(residual)) - kResidualLog10Min) /
-                   (kResidualLog10Max - kResidualLog10Min);
+  const double t =
+      (std::log10(double(residual)) - kResidualLog10Min) / (kResidualLog10Max - kResidualLog10Min);
   // Never fully black: the darkest entries are left out so small residuals still show.
   return inferno[size_t(std::clamp(std::lround(40 + t * 215), 40L, 255L))];
 }
@@ -387,7 +412,9 @@ cv::Mat draw_layers(const InspectFrame& frame, const LayerSet& layers, const Vie
     first_area = first_area && !info.area;
     cairo_save(cr);
     switch (info.layer) {
-      case Layer::Image: draw_image(cr, frame, view, opacity); break;
+      case Layer::Image:
+        draw_image(cr, frame, view, opacity);
+        break;
       case Layer::Faces:
         paint_faces(cr, arr, view, opacity, [](const vector::ViewFace& f, int number) {
           return face_color(f.front, number);
@@ -398,14 +425,30 @@ cv::Mat draw_layers(const InspectFrame& frame, const LayerSet& layers, const Vie
           return coverage_color(int(f.cover.size()));
         });
         break;
-      case Layer::Mask: draw_mask(cr, frame, view, opacity); break;
-      case Layer::Constraints: draw_constraints(cr, frame, view, opacity, canvas); break;
-      case Layer::Residual: draw_residual(cr, frame, layers, view, opacity); break;
-      case Layer::Outlines: draw_outlines(pen, frame); break;
-      case Layer::Visibility: draw_visibility(pen, frame); break;
-      case Layer::Curves: draw_curves(pen, frame); break;
-      case Layer::Vertices: draw_vertices(pen, frame); break;
-      case Layer::Ink: draw_ink(pen, frame); break;
+      case Layer::Mask:
+        draw_mask(cr, frame, view, opacity);
+        break;
+      case Layer::Constraints:
+        draw_constraints(cr, frame, view, opacity, canvas);
+        break;
+      case Layer::Residual:
+        draw_residual(cr, frame, layers, view, opacity);
+        break;
+      case Layer::Outlines:
+        draw_outlines(pen, frame);
+        break;
+      case Layer::Visibility:
+        draw_visibility(pen, frame);
+        break;
+      case Layer::Curves:
+        draw_curves(pen, frame);
+        break;
+      case Layer::Vertices:
+        draw_vertices(pen, frame);
+        break;
+      case Layer::Ink:
+        draw_ink(pen, frame);
+        break;
     }
     cairo_restore(cr);
   }

@@ -87,8 +87,8 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
   std::vector<MouseEvent> mouse;
   cv::setMouseCallback(name, on_mouse, &mouse);
 
-  WindowState s = initial_state(frame.index, source.frame_count(), frame.width(), frame.height(),
-                                area, layers);
+  WindowState s =
+      initial_state(frame.index, source.frame_count(), frame.width(), frame.height(), area, layers);
   s.residual_steps = int(frame.residual.size());
   bool dirty = true, shown = false;
   for (;;) {
@@ -108,8 +108,11 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
     mouse.clear();
     for (const Action a : actions) {
       switch (a) {
-        case Action::None: continue;
-        case Action::Quit: cv::destroyWindow(name); return;
+        case Action::None:
+          continue;
+        case Action::Quit:
+          cv::destroyWindow(name);
+          return;
         case Action::LoadFrame:
           frame = source.render(s.frame);
           s.residual_steps = int(frame.residual.size());
@@ -126,7 +129,8 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
           s.message = std::string("saved ") + file;
           break;
         }
-        case Action::Redraw: break;
+        case Action::Redraw:
+          break;
       }
       if (!s.message.empty()) say(s.message);
       dirty = true;
@@ -160,8 +164,9 @@ void run(const Args& a) {
   if (!a.dump.empty()) check_output("--dump", a.dump, ".json");
   const bool headless = !a.snapshot.empty() || !a.dump.empty() || pick;
   if (!headless && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-    throw std::runtime_error("no display to open a window on (DISPLAY is not set); use "
-                             "--snapshot, --dump or --pick");
+    throw std::runtime_error(
+        "no display to open a window on (DISPLAY is not set); use "
+        "--snapshot, --dump or --pick");
 
   SceneFramesOptions options;
   options.anim = a.anim;

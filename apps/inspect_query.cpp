@@ -80,11 +80,13 @@ std::string wisp_summary(const InspectFrame& f, int w) {
       "%d faces",
       w, wisp.strand, wisp.first_sample, wisp.last_sample, wisp.centre.span_count(),
       wisp.outline.cubic_count(), length, std::isfinite(hw_min) ? hw_min : 0.0, hw_max,
-      wisp.centre.depth.empty() ? 0.0 : *zmin, wisp.centre.depth.empty() ? 0.0 : *zmax,
-      100 * shown, int(visible.size()), front);
+      wisp.centre.depth.empty() ? 0.0 : *zmin, wisp.centre.depth.empty() ? 0.0 : *zmax, 100 * shown,
+      int(visible.size()), front);
 }
 
-nlohmann::json point(const Vec2& p) { return {p.x(), p.y()}; }
+nlohmann::json point(const Vec2& p) {
+  return {p.x(), p.y()};
+}
 
 nlohmann::json ring(const std::vector<Vec2>& r) {
   nlohmann::json out = nlohmann::json::array();
@@ -167,9 +169,12 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
   j["time"] = f.time;
   j["width"] = f.width();
   j["height"] = f.height();
-  j["stats"] = {{"wisps", st.wisps},         {"segments", st.segments},
-                {"vertices", st.vertices},   {"edges", st.edges},
-                {"faces", st.faces},         {"covered_faces", st.covered_faces},
+  j["stats"] = {{"wisps", st.wisps},
+                {"segments", st.segments},
+                {"vertices", st.vertices},
+                {"edges", st.edges},
+                {"faces", st.faces},
+                {"covered_faces", st.covered_faces},
                 {"intersections", st.intersections}};
 
   nlohmann::json wisps = nlohmann::json::array();
@@ -180,8 +185,9 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
     wisps.push_back({{"id", w},
                      {"strand", wisp.strand},
                      {"samples", {wisp.first_sample, wisp.last_sample}},
-                     {"bounds", {wisp.bounds.min().x(), wisp.bounds.min().y(),
-                                 wisp.bounds.max().x(), wisp.bounds.max().y()}},
+                     {"bounds",
+                      {wisp.bounds.min().x(), wisp.bounds.min().y(), wisp.bounds.max().x(),
+                       wisp.bounds.max().y()}},
                      {"visible", visible}});
   }
   j["wisps"] = std::move(wisps);

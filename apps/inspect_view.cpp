@@ -47,7 +47,9 @@ void zoom_about(WindowState& s, const Vec2& canvas_point, double factor) {
   s.message = format("zoom %.2fx", zoom);
 }
 
-Vec2 area_centre(const WindowState& s) { return {0.5 * s.area.width, 0.5 * s.area.height}; }
+Vec2 area_centre(const WindowState& s) {
+  return {0.5 * s.area.width, 0.5 * s.area.height};
+}
 
 // Text wrapped to `width` pixels at spaces; continuation lines are indented.
 std::vector<std::string> wrap(const std::string& text, int width) {
@@ -242,19 +244,26 @@ Action handle_key(WindowState& s, int key) {
     }
   switch (key) {
     case 'q':
-    case kKeyEscape: return Action::Quit;
+    case kKeyEscape:
+      return Action::Quit;
     case 'h':
       s.help = !s.help;
       s.message = s.help ? "help on" : "help off";
       return Action::Redraw;
     case kKeyRight:
-    case '.': return go_to(s, s.frame + 1);
+    case '.':
+      return go_to(s, s.frame + 1);
     case kKeyLeft:
-    case ',': return go_to(s, s.frame - 1);
-    case kKeyPageDown: return go_to(s, s.frame + 10);
-    case kKeyPageUp: return go_to(s, s.frame - 10);
-    case kKeyHome: return go_to(s, 0);
-    case kKeyEnd: return go_to(s, s.frame_count - 1);
+    case ',':
+      return go_to(s, s.frame - 1);
+    case kKeyPageDown:
+      return go_to(s, s.frame + 10);
+    case kKeyPageUp:
+      return go_to(s, s.frame - 10);
+    case kKeyHome:
+      return go_to(s, 0);
+    case kKeyEnd:
+      return go_to(s, s.frame_count - 1);
     case 'g':
       s.prompting = true;
       s.prompt.clear();
@@ -274,14 +283,20 @@ Action handle_key(WindowState& s, int key) {
       return Action::Redraw;
     }
     case '+':
-    case '=': zoom_about(s, area_centre(s), kWheelStep); return Action::Redraw;
-    case '-': zoom_about(s, area_centre(s), 1 / kWheelStep); return Action::Redraw;
+    case '=':
+      zoom_about(s, area_centre(s), kWheelStep);
+      return Action::Redraw;
+    case '-':
+      zoom_about(s, area_centre(s), 1 / kWheelStep);
+      return Action::Redraw;
     case '0':
       s.view = fit_view(s.area, s.frame_width, s.frame_height);
       s.message = "view reset";
       return Action::Redraw;
-    case 's': return Action::Save;
-    default: return Action::None;
+    case 's':
+      return Action::Save;
+    default:
+      return Action::None;
   }
 }
 
@@ -317,7 +332,8 @@ Action handle_mouse(WindowState& s, int event, int x, int y, int flags) {
       s.pick_point = s.view.to_frame(q + Vec2(0.5, 0.5));  // the centre of the clicked pixel
       return Action::Pick;
     }
-    default: return Action::None;
+    default:
+      return Action::None;
   }
 }
 

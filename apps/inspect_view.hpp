@@ -16,7 +16,7 @@
 
 namespace wisp::apps {
 
-constexpr int kPanelWidth = 400;      // side panel, canvas pixels
+constexpr int kPanelWidth = 400;       // side panel, canvas pixels
 constexpr int kMinCanvasHeight = 680;  // room for the panel's text
 
 struct WindowState {

@@ -45,8 +45,8 @@ void ProgressBar::print(bool final_line) {
                  total_, rate, eta);
     if (final_line) std::fprintf(out_, "\n");
   } else if (final_line) {
-    std::fprintf(out_, "%s: %d/%d done in %.1fs (%.1f/s)\n", label_.c_str(), done_, total_,
-                 elapsed, rate);
+    std::fprintf(out_, "%s: %d/%d done in %.1fs (%.1f/s)\n", label_.c_str(), done_, total_, elapsed,
+                 rate);
   } else {
     std::fprintf(out_, "%s: %d/%d  %.1f/s  ETA %.0fs\n", label_.c_str(), done_, total_, rate, eta);
   }

@@ -82,8 +82,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyP
     r.time.rasterize = ms_since(t0);
     t0 = Clock::now();
     const bool warm = warm_start && warm_start->size() == r.problem.pixel_count() * 3;
-    diffusion::Solution s = diffusion::solve_multigrid(r.problem, setup.solver,
-                                                       warm ? warm_start : nullptr);
+    diffusion::Solution s =
+        diffusion::solve_multigrid(r.problem, setup.solver, warm ? warm_start : nullptr);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     pic.hair = {W, H, s.planes};

@@ -19,7 +19,7 @@ struct FrameSetup {
   vector::HairStyle style;
   diffusion::SolverOptions solver;
   io::Rgb background{1, 1, 1};
-  bool debug_view = false;   // keep the arrangement's debug view (inspector)
+  bool debug_view = false;    // keep the arrangement's debug view (inspector)
   bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
 };
 
@@ -33,9 +33,9 @@ struct FrameResult {
   std::vector<vector::Wisp> wisps;
   vector::WispArrangement arrangement;
   std::vector<diffusion::DiffusionCurve> curves;
-  diffusion::Problem problem;     // the rasterized constraints (inspector)
+  diffusion::Problem problem;  // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
-  std::vector<float> solution;    // the solved RGB planes: the next frame's warm start
+  std::vector<float> solution;  // the solved RGB planes: the next frame's warm start
   FrameTimings time;
 };
 

@@ -1,8 +1,9 @@
 // From a scene file to the frames the renderer draws: the scene (with an optional image size
 // override), its animation (simulated now, or read back from a saved .wsim), every frame projected
 // in order (the occlusion hysteresis follows the frames, so frame k projects the same whichever
-// frame a tool asks for first), and per frame the body under the hair and as occluder of it. Shared by `wisp render` and `wisp-inspect`, so the inspector shows exactly the
-// frames the renderer writes.
+// frame a tool asks for first), and per frame the body under the hair and as occluder of it. Shared
+// by `wisp render` and `wisp-inspect`, so the inspector shows exactly the frames the renderer
+// writes.
 #pragma once
 
 #include <filesystem>
@@ -44,8 +45,8 @@ SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
 // The renderer's settings for a scene (style, solver tolerance, background).
 FrameSetup frame_setup(const io::Scene& scene);
 
-// The body under the hair in frame k as flat polygons, back to front: each triangle's shade
-// picks between a lit and a shadow skin tone (two flat bands, a simple toon look).
+// The body under the hair in frame k as flat polygons, back to front, in two skin tones (a toon
+// look): lit and shadowed, split along the smooth iso-line of the light's half-Lambert shade.
 std::vector<io::BodyPolygon> frame_body(const SceneFrames& frames, int k);
 
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when

@@ -66,17 +66,20 @@ int run_solver(const std::vector<std::string>& args) {
       stats = sol.stats;
       return (sol.stats.setup_ms + sol.stats.solve_ms) / 1000.0;
     });
-    std::printf("    {\"size\": %d, \"multigrid_ms\": %.2f, \"multigrid_setup_ms\": %.2f, "
-                "\"cycles\": %d, \"final_residual\": %.3g",
-                n, mg * 1000, stats.setup_ms, stats.cycles, stats.final_residual);
+    std::printf(
+        "    {\"size\": %d, \"multigrid_ms\": %.2f, \"multigrid_setup_ms\": %.2f, "
+        "\"cycles\": %d, \"final_residual\": %.3g",
+        n, mg * 1000, stats.setup_ms, stats.cycles, stats.final_residual);
     if (n <= cg_max) {
-      const auto ldlt = diffusion::solve_reference(problem, diffusion::ReferenceMethod::SimplicialLDLT);
-      const auto cg =
-          diffusion::solve_reference(problem, diffusion::ReferenceMethod::ConjugateGradient, tolerance);
-      std::printf(", \"eigen_ldlt_ms\": %.1f, \"eigen_cg_ms\": %.1f, \"eigen_cg_iterations\": %d, "
-                  "\"speedup_vs_ldlt\": %.1f, \"speedup_vs_cg\": %.1f",
-                  ldlt.seconds * 1000, cg.seconds * 1000, cg.iterations, ldlt.seconds / mg,
-                  cg.seconds / mg);
+      const auto ldlt =
+          diffusion::solve_reference(problem, diffusion::ReferenceMethod::SimplicialLDLT);
+      const auto cg = diffusion::solve_reference(
+          problem, diffusion::ReferenceMethod::ConjugateGradient, tolerance);
+      std::printf(
+          ", \"eigen_ldlt_ms\": %.1f, \"eigen_cg_ms\": %.1f, \"eigen_cg_iterations\": %d, "
+          "\"speedup_vs_ldlt\": %.1f, \"speedup_vs_cg\": %.1f",
+          ldlt.seconds * 1000, cg.seconds * 1000, cg.iterations, ldlt.seconds / mg,
+          cg.seconds / mg);
     }
     std::printf("}%s\n", s + 1 < sizes.size() ? "," : "");
     std::fflush(stdout);

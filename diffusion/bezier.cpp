@@ -46,8 +46,7 @@ Eigen::Vector2d eval_cubic(const Eigen::Vector2d* p, double s) {
   return u * u * u * p[0] + 3 * u * u * s * p[1] + 3 * u * s * s * p[2] + s * s * s * p[3];
 }
 
-std::vector<PathSample> flatten_path(const std::vector<Eigen::Vector2d>& points,
-                                     double tolerance) {
+std::vector<PathSample> flatten_path(const std::vector<Eigen::Vector2d>& points, double tolerance) {
   std::vector<PathSample> out;
   if (points.size() < 4) return out;
   const int k = int(points.size() - 1) / 3;

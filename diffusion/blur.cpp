@@ -7,9 +7,8 @@
 
 namespace wisp::diffusion {
 
-std::vector<float> spatially_varying_blur(const std::vector<float>& planes, int channels,
-                                          int width, int height,
-                                          const std::vector<float>& sigma) {
+std::vector<float> spatially_varying_blur(const std::vector<float>& planes, int channels, int width,
+                                          int height, const std::vector<float>& sigma) {
   const size_t n = size_t(width) * size_t(height);
   const float largest = sigma.empty() ? 0.0f : *std::max_element(sigma.begin(), sigma.end());
   if (!(largest > 0.0f)) return planes;

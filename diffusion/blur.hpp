@@ -15,7 +15,7 @@ namespace wisp::diffusion {
 
 // `planes`: `channels` planes of width*height; `sigma`: width*height standard deviations in
 // pixels (negative values count as 0). Returns the blurred planes. Borders reflect.
-std::vector<float> spatially_varying_blur(const std::vector<float>& planes, int channels,
-                                          int width, int height, const std::vector<float>& sigma);
+std::vector<float> spatially_varying_blur(const std::vector<float>& planes, int channels, int width,
+                                          int height, const std::vector<float>& sigma);
 
 }  // namespace wisp::diffusion

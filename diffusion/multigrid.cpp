@@ -76,8 +76,8 @@ class Multigrid {
   const SolverOptions& options_;
   std::vector<Level> levels_;
   std::vector<Prolongation> prolong_;  // prolong_[l]: from level l+1 into level l
-  std::array<double, NC> b_norm_{};  // scale of relative residuals (see relative())
-  std::vector<std::uint8_t> fixed_;  // the problem's fixed pixels plus the unreachable ones
+  std::array<double, NC> b_norm_{};    // scale of relative residuals (see relative())
+  std::vector<std::uint8_t> fixed_;    // the problem's fixed pixels plus the unreachable ones
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;
@@ -100,8 +100,7 @@ class Multigrid {
   double conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
                             SolveStats& st);
   void setup();
-  std::array<double, NC> residual_double(const std::vector<double>& u,
-                                         std::vector<float>& r_padded,
+  std::array<double, NC> residual_double(const std::vector<double>& u, std::vector<float>& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
   double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
   void observe(const std::vector<float>& residual_padded, const SolveStats& st) const;
@@ -178,13 +177,17 @@ void Multigrid<NC>::build_coarse(int l) {
     float d, e, w, n, s, ne, nw, se, sw;
   };
   const auto stencil = [&](size_t k) {
-    return Stencil{F.diag[k],          F.ae[k],           F.ae[k - 1],       F.as[k - fs],
-                   F.as[k],            a(F.asw, k - fs + 1), a(F.ase, k - fs - 1), a(F.ase, k),
+    return Stencil{F.diag[k],
+                   F.ae[k],
+                   F.ae[k - 1],
+                   F.as[k - fs],
+                   F.as[k],
+                   a(F.asw, k - fs + 1),
+                   a(F.ase, k - fs - 1),
+                   a(F.ase, k),
                    a(F.asw, k)};
   };
-  const auto ratio = [](float num, float den) {
-    return den > 1e-6f ? num / den : 0.0f;
-  };
+  const auto ratio = [](float num, float den) { return den > 1e-6f ? num / den : 0.0f; };
 
   // Collapsing the stencil of an edge point onto its two coarse neighbours (Dendy): the
   // couplings beside a coarse neighbour (say north-west and south-west for the west one) are
@@ -278,7 +281,9 @@ void Multigrid<NC>::build_coarse(int l) {
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
     const int pw_stride = F.w + 2;
     std::vector<float> pw(size_t(y_count + 2) * pw_stride * 4);
-    const auto pw_at = [&](int x, int y) { return &pw[(size_t(y - y_first + 1) * pw_stride + (x + 1)) * 4]; };
+    const auto pw_at = [&](int x, int y) {
+      return &pw[(size_t(y - y_first + 1) * pw_stride + (x + 1)) * 4];
+    };
     for (int y = y_first - 1; y <= y_first + y_count; ++y)
       for (int x = -1; x <= F.w; ++x) p_row(x, y, pw_at(x, y));
     std::vector<float> ap(size_t(y_count) * F.w * 9, 0.0f);
@@ -312,10 +317,9 @@ void Multigrid<NC>::build_coarse(int l) {
         const size_t kc = C.at(I, J);
         if (!C.alive[kc]) continue;
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
-        const float weight[3][3] = {
-            {P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
-            {P.x1[kc - 1], 1.0f, P.x0[kc]},
-            {P.c10[kc - 1], P.y0[kc], P.c00[kc]}};
+        const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
+                                    {P.x1[kc - 1], 1.0f, P.x0[kc]},
+                                    {P.c10[kc - 1], P.y0[kc], P.c00[kc]}};
         double acc[5] = {0, 0, 0, 0, 0};
         for (int oy = -1; oy <= 1; ++oy)
           for (int ox = -1; ox <= 1; ++ox) {
@@ -407,18 +411,18 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict b
     const float* __restrict b = &L.rhs[c * n + row];
     if (!L.nine_point) {
       for (int x = 0; x < w; ++x)
-        buf[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
-                  an[x] * e[x - s]) *
-                 id[x];
+        buf[x] =
+            (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] + an[x] * e[x - s]) *
+            id[x];
     } else {
       const float* __restrict ase = &L.ase[row];
       const float* __restrict anw = &L.ase[row - s - 1];
       const float* __restrict asw = &L.asw[row];
       const float* __restrict ane = &L.asw[row - s + 1];
       for (int x = 0; x < w; ++x)
-        buf[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
-                  an[x] * e[x - s] + ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] +
-                  asw[x] * e[x + s - 1] + ane[x] * e[x - s + 1]) *
+        buf[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] + an[x] * e[x - s] +
+                  ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] + asw[x] * e[x + s - 1] +
+                  ane[x] * e[x - s + 1]) *
                  id[x];
     }
     for (int x = x_parity; x < w; x += 2) e[x] = buf[x];
@@ -450,7 +454,8 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse) {
   constexpr int kPointsPerChunk = 16384;
   const int chunks = std::clamp(L.w * L.h * NC / kPointsPerChunk, 1, std::max(1, L.h / 4));
   const auto chunk_rows = [&](int k) {
-    return std::pair<int, int>{int(int64_t(L.h) * k / chunks), int(int64_t(L.h) * (k + 1) / chunks)};
+    return std::pair<int, int>{int(int64_t(L.h) * k / chunks),
+                               int(int64_t(L.h) * (k + 1) / chunks)};
   };
   const auto parallel = [&](const auto& body) {
     if (chunks == 1) {
@@ -648,8 +653,8 @@ std::array<double, NC> Multigrid<NC>::dot(const std::vector<float>& a,
 // nearly seal off, say); CG removes those few outliers in a handful of iterations, so the solver
 // keeps its rate where plain V-cycles would stall. Starts from the FMG answer in levels_[0].e.
 template <int NC>
-double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double rel,
-                                         double tolerance, SolveStats& st) {
+double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
+                                         SolveStats& st) {
   Level& L = levels_[0];
   const size_t n = L.padded();
   std::vector<float> x = L.e, r(r0.size()), p(r0.size(), 0.0f), q(r0.size());
@@ -765,10 +770,9 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<double>&
       for (int x = 0; x < p.width; ++x) {
         const size_t i = p.index(x, y), k = F.at(x, y);
         if (fixed_[i]) continue;
-        const bool open[4] = {(p.links[i] & kOpenEast) != 0,
-                              x > 0 && (p.links[i - 1] & kOpenEast) != 0,
-                              (p.links[i] & kOpenSouth) != 0,
-                              y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
+        const bool open[4] = {
+            (p.links[i] & kOpenEast) != 0, x > 0 && (p.links[i - 1] & kOpenEast) != 0,
+            (p.links[i] & kOpenSouth) != 0, y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
         const size_t nb[4] = {i + 1, i - 1, i + p.width, i - p.width};
         for (int c = 0; c < NC; ++c) {
           const double* uc = &u[c * np];
@@ -862,8 +866,8 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
   std::vector<double> u(np * NC, 0.0);
   for (int c = 0; c < NC; ++c)
     for (size_t i = 0; i < np; ++i)
-      u[c * np + i] = p.fixed[i] ? p.value[c * np + i]
-                                 : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
+      u[c * np + i] =
+          p.fixed[i] ? p.value[c * np + i] : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
   std::vector<float> r;
   b_norm_.fill(0.0);
@@ -882,8 +886,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
     solve_correction(r, options_.tolerance, st);
     for (int c = 0; c < NC; ++c)
       for (int y = 0; y < p.height; ++y)
-        for (int x = 0; x < p.width; ++x)
-          u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
+        for (int x = 0; x < p.width; ++x) u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
     const double prev = rel;
     rel = relative(residual_double(u, r));
     if (rel > 0.5 * prev) break;
@@ -939,10 +942,14 @@ Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
   if (initial_guess && initial_guess->size() != problem.pixel_count() * problem.channels)
     throw std::invalid_argument("solver: initial guess has the wrong size");
   switch (problem.channels) {
-    case 1: return Multigrid<1>(problem, options).run(initial_guess);
-    case 2: return Multigrid<2>(problem, options).run(initial_guess);
-    case 3: return Multigrid<3>(problem, options).run(initial_guess);
-    default: return Multigrid<4>(problem, options).run(initial_guess);
+    case 1:
+      return Multigrid<1>(problem, options).run(initial_guess);
+    case 2:
+      return Multigrid<2>(problem, options).run(initial_guess);
+    case 3:
+      return Multigrid<3>(problem, options).run(initial_guess);
+    default:
+      return Multigrid<4>(problem, options).run(initial_guess);
   }
 }
 

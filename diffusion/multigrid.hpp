@@ -76,8 +76,7 @@ struct Solution {
 // float32 precision never runs out), and the factor ||r_k+1|| / ||r_k|| of each cycle returned.
 // This is how the rate of a multigrid cycle is measured (Trottenberg et al., Multigrid, 2001).
 std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
-                                           const SolverOptions& options = {},
-                                           unsigned seed = 1);
+                                           const SolverOptions& options = {}, unsigned seed = 1);
 
 // Solves `problem`. `initial_guess`, when given (a warm start, e.g. the previous frame), holds
 // channels planes of W*H; its values at fixed pixels are ignored.

@@ -50,8 +50,7 @@ struct Rasterizer {
     const int bx = ax + dx, by = ay + dy;
     const bool link_inside = inside(ax, ay) && inside(bx, by);
     if (c.gradient_only) {
-      if (link_inside)
-        add_jump(c, dx ? wx : wy, problem.index(ax, ay), a_is_left, t);
+      if (link_inside) add_jump(c, dx ? wx : wy, problem.index(ax, ay), a_is_left, t);
       return;
     }
     if (link_inside) problem.links[problem.index(ax, ay)] &= dx ? ~kOpenEast : ~kOpenSouth;
@@ -109,9 +108,10 @@ struct Rasterizer {
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
                   const RasterizeOptions& options) {
   Problem problem = make_open_problem(width, height, options.blur_channel ? 4 : 3);
-  Rasterizer r{problem, std::vector<float>(problem.pixel_count(),
-                                           std::numeric_limits<float>::infinity()),
-               {}, {}};
+  Rasterizer r{problem,
+               std::vector<float>(problem.pixel_count(), std::numeric_limits<float>::infinity()),
+               {},
+               {}};
   for (const DiffusionCurve& c : curves) {
     const std::vector<PathSample> poly = flatten_path(c.points, options.flatten_tolerance);
     for (size_t k = 1; k < poly.size(); ++k) r.edge(c, poly[k - 1], poly[k]);

@@ -29,10 +29,9 @@ ReferenceResult solve_reference(const Problem& p, ReferenceMethod method, double
       const size_t i = p.index(x, y);
       const int r = unknown[i];
       if (r < 0) continue;
-      const bool open[4] = {x + 1 < W && (p.links[i] & kOpenEast) != 0,
-                            x > 0 && (p.links[i - 1] & kOpenEast) != 0,
-                            y + 1 < H && (p.links[i] & kOpenSouth) != 0,
-                            y > 0 && (p.links[i - W] & kOpenSouth) != 0};
+      const bool open[4] = {
+          x + 1 < W && (p.links[i] & kOpenEast) != 0, x > 0 && (p.links[i - 1] & kOpenEast) != 0,
+          y + 1 < H && (p.links[i] & kOpenSouth) != 0, y > 0 && (p.links[i - W] & kOpenSouth) != 0};
       const size_t nb[4] = {i + 1, i - 1, i + W, i - W};
       int degree = 0;
       for (int k = 0; k < 4; ++k) {

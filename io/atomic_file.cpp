@@ -20,8 +20,8 @@ void write_atomically(const std::filesystem::path& path,
   if (access(dir.c_str(), W_OK) != 0)
     throw std::runtime_error(path.string() + ": output folder '" + dir.string() +
                              "' is not writable");
-  const fs::path tmp = dir / ("." + path.stem().string() + ".partial-" +
-                              std::to_string(getpid()) + path.extension().string());
+  const fs::path tmp = dir / ("." + path.stem().string() + ".partial-" + std::to_string(getpid()) +
+                              path.extension().string());
   try {
     write(tmp);
   } catch (...) {

@@ -70,8 +70,8 @@ class Reader {
     for (int k = 0; k < 3; ++k) {
       const double v = number(e, names[k]);
       if (v < 0 || v > top)
-        fail(e, std::string("colour '") + names[k] + "' must lie in [0," +
-                    (bytes ? "255" : "1") + "], got " + e->Attribute(names[k]));
+        fail(e, std::string("colour '") + names[k] + "' must lie in [0," + (bytes ? "255" : "1") +
+                    "], got " + e->Attribute(names[k]));
       c[k] = float(v / top);
     }
     if (dialect_ == XmlDialect::CurveSetXML) std::swap(c[0], c[2]);  // the files store BGR
@@ -85,8 +85,7 @@ class Reader {
     std::vector<Stop> out;
     if (!set) return out;
     std::vector<const XMLElement*> elements;
-    for (const XMLElement* e = set->FirstChildElement(child); e;
-         e = e->NextSiblingElement(child))
+    for (const XMLElement* e = set->FirstChildElement(child); e; e = e->NextSiblingElement(child))
       elements.push_back(e);
     double largest = 0;
     for (const XMLElement* e : elements) {
@@ -99,7 +98,8 @@ class Reader {
       s.t = number(e, "globalID") / (largest > 1 ? largest : 1.0);
       out.push_back(s);
     }
-    std::stable_sort(out.begin(), out.end(), [](const Stop& a, const Stop& b) { return a.t < b.t; });
+    std::stable_sort(out.begin(), out.end(),
+                     [](const Stop& a, const Stop& b) { return a.t < b.t; });
     return out;
   }
 
@@ -119,7 +119,7 @@ class Reader {
          p = p->NextSiblingElement("control_point")) {
       const double x = number(p, "x"), y = number(p, "y");
       c.points.emplace_back(dialect_ == XmlDialect::CurveSetXML ? Eigen::Vector2d(y, x)
-                                                                 : Eigen::Vector2d(x, y));
+                                                                : Eigen::Vector2d(x, y));
     }
     check_count(e, "nb_control_points", c.points.size(), true);
     const size_t n = c.points.size();
@@ -152,8 +152,8 @@ class Reader {
       return BlurStop{0, float(v)};
     });
     check_count(e, "nb_blur_points", c.blur.size(), false);
-    diffusion::validate(c, name_ + ":" + std::to_string(e->GetLineNum()) + ": curve " +
-                               std::to_string(index));
+    diffusion::validate(
+        c, name_ + ":" + std::to_string(e->GetLineNum()) + ": curve " + std::to_string(index));
     return c;
   }
 
@@ -171,8 +171,8 @@ class Reader {
     out.drawing.width = w;
     out.drawing.height = h;
 
-    const XMLElement* set = dialect_ == XmlDialect::SceneXML ? root->FirstChildElement("curve_set")
-                                                              : root;
+    const XMLElement* set =
+        dialect_ == XmlDialect::SceneXML ? root->FirstChildElement("curve_set") : root;
     if (set) {
       int index = 0;
       for (const XMLElement* c = set->FirstChildElement("curve"); c;
@@ -220,8 +220,10 @@ XmlDialect detect_dialect(const tinyxml2::XMLDocument& doc, const std::string& n
   const XMLElement* root = doc.RootElement();
   if (root && std::string(root->Name()) == "scene") return XmlDialect::SceneXML;
   if (root && std::string(root->Name()) == "curve_set") return XmlDialect::CurveSetXML;
-  throw std::invalid_argument(name + ": not a diffusion-curve drawing (no <!DOCTYPE CurveSetXML> "
-                              "or <!DOCTYPE SceneXML>, and the root is not <curve_set> or <scene>)");
+  throw std::invalid_argument(
+      name +
+      ": not a diffusion-curve drawing (no <!DOCTYPE CurveSetXML> "
+      "or <!DOCTYPE SceneXML>, and the root is not <curve_set> or <scene>)");
 }
 
 std::string fmt(const char* f, double v) {
@@ -259,12 +261,16 @@ std::string format_drawing_xml(const diffusion::Drawing& d, XmlDialect dialect) 
   } else {
     o << "<!DOCTYPE SceneXML>\n<scene " << size << ">\n <curve_set " << nb << ">\n";
   }
-  const auto id = [&](double t) { return orzan ? fmt("%.0f", std::round(t * 10000)) : fmt("%.17g", t); };
+  const auto id = [&](double t) {
+    return orzan ? fmt("%.0f", std::round(t * 10000)) : fmt("%.17g", t);
+  };
   const auto colour = [&](const Color& c) {
     if (orzan)  // BGR bytes
       return "R=\"" + fmt("%.0f", std::round(c[2] * 255)) + "\" G=\"" +
-             fmt("%.0f", std::round(c[1] * 255)) + "\" B=\"" + fmt("%.0f", std::round(c[0] * 255)) + "\"";
-    return "r=\"" + fmt("%.9g", c[0]) + "\" g=\"" + fmt("%.9g", c[1]) + "\" b=\"" + fmt("%.9g", c[2]) + "\"";
+             fmt("%.0f", std::round(c[1] * 255)) + "\" B=\"" + fmt("%.0f", std::round(c[0] * 255)) +
+             "\"";
+    return "r=\"" + fmt("%.9g", c[0]) + "\" g=\"" + fmt("%.9g", c[1]) + "\" b=\"" +
+           fmt("%.9g", c[2]) + "\"";
   };
   for (const DiffusionCurve& c : d.curves) {
     // In CurveSetXML our left side is the file's right side (see the reader).

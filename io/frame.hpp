@@ -41,10 +41,10 @@ struct FlatRegion {
 struct FramePicture {
   int width = 0, height = 0;
   Rgb background{1, 1, 1};
-  std::vector<BodyPolygon> body;     // back to front
-  diffusion::Image hair;             // full-frame smooth shading (may be empty: no hair)
-  vector::HairMask mask;             // where the hair image shows
-  std::vector<InkStroke> ink;        // on top of everything
+  std::vector<BodyPolygon> body;  // back to front
+  diffusion::Image hair;          // full-frame smooth shading (may be empty: no hair)
+  vector::HairMask mask;          // where the hair image shows
+  std::vector<InkStroke> ink;     // on top of everything
   // SVG only: the wisp outlines (3k+1 Bezier control points each), in a hidden debug group,
   // and the per-wisp regions of --svg-style flat.
   std::vector<std::vector<Eigen::Vector2d>> outlines;

@@ -18,15 +18,16 @@ using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
 // Frames are opaque: RGB24 (Cairo writes such surfaces as RGB PNGs, without alpha).
 Surface make_surface(int width, int height) {
-  Surface s(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height),
-            cairo_surface_destroy);
+  Surface s(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height), cairo_surface_destroy);
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
                              std::to_string(height) + " image");
   return s;
 }
 
-void set_rgb(cairo_t* cr, const Rgb& c) { cairo_set_source_rgb(cr, c[0], c[1], c[2]); }
+void set_rgb(cairo_t* cr, const Rgb& c) {
+  cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+}
 
 void polygon_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
   if (ring.empty()) return;
@@ -51,7 +52,9 @@ Surface hair_surface(const diffusion::Image& img) {
   unsigned char* data = cairo_image_surface_get_data(s.get());
   const int stride = cairo_image_surface_get_stride(s.get());
   const size_t n = size_t(img.width) * size_t(img.height);
-  const auto byte = [](float v) { return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  const auto byte = [](float v) {
+    return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+  };
   for (int y = 0; y < img.height; ++y) {
     auto* row = reinterpret_cast<std::uint32_t*>(data + size_t(y) * stride);
     for (int x = 0; x < img.width; ++x) {
@@ -156,7 +159,8 @@ std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width
   const int stride = cairo_image_surface_get_stride(s.get());
   std::vector<std::uint8_t> out(size_t(width) * height);
   for (int y = 0; y < height; ++y)
-    std::copy(data + size_t(y) * stride, data + size_t(y) * stride + width, &out[size_t(y) * width]);
+    std::copy(data + size_t(y) * stride, data + size_t(y) * stride + width,
+              &out[size_t(y) * width]);
   return out;
 }
 

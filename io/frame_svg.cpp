@@ -69,8 +69,8 @@ std::string png_data_uri(const diffusion::Image& img) {
   const size_t n = size_t(img.width) * img.height;
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c)
-      bgr.data[3 * i + 2 - c] =
-          static_cast<unsigned char>(std::lround(std::clamp(img.planes[c * n + i], 0.0f, 1.0f) * 255));
+      bgr.data[3 * i + 2 - c] = static_cast<unsigned char>(
+          std::lround(std::clamp(img.planes[c * n + i], 0.0f, 1.0f) * 255));
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", bgr, png)) throw std::runtime_error("cannot encode the hair image");
   return "data:image/png;base64," + base64(png);

@@ -1,17 +1,34 @@
-// The scene file (JSON): one object with a part per concern. This issue reads the physical parts,
-// `head`, `hair`, `motion`, `sim` and `camera` (docs/scene.md lists every field, its default and
-// unit); later parts (`style`, `light`, `render`) join the table in scene_json.cpp. Every field
-// is optional; unknown fields, wrong types and out-of-range values are errors naming the file and
-// the field ("scene.json: hair.cuont: unknown field (did you mean \"count\"?)").
+// The scene file (JSON): one object with a part per concern: the physical parts `head`, `hair`,
+// `motion`, `sim` and `camera`, and the look: `style` (vector::HairStyle), `light` and `render`
+// (docs/scene.md lists every field, its default and unit). Every field is optional; unknown
+// fields, wrong types and out-of-range values are errors naming the file and the field
+// ("scene.json: hair.cuont: unknown field (did you mean \"count\"?)").
 #pragma once
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "sim/body.hpp"
+#include "sim/camera.hpp"
 #include "sim/params.hpp"
 #include "sim/simulate.hpp"
+#include "vector/hair_style.hpp"
 
 namespace wisp::io {
+
+// How frames are rendered and what is written besides them (the scene's `render` part).
+// Colours are RGB in [0,1], in the same space as the style's colours.
+struct RenderParams {
+  Eigen::Vector3f background_color{0.93f, 0.91f, 0.87f};
+  Eigen::Vector3f skin_color{0.96f, 0.80f, 0.69f};  // head, neck and torso (shaded by the light)
+  bool body = true;                // draw the head (and neck and torso) under the hair
+  bool torso = true;               // with `body`: also the neck, shoulders and chest
+  double solver_tolerance = 1e-4;  // diffusion solve: relative residual per channel
+  int warm_start_block = 8;        // frames solved in sequence, each warm-started by the previous
+  bool video = true;               // write preview.mp4
+  int contact_sheet_columns = 6;   // tiles per row of contact.png
+};
 
 struct Scene {
   std::filesystem::path path;  // the scene file; relative file names inside resolve from its folder
@@ -20,6 +37,9 @@ struct Scene {
   sim::MotionParams motion;
   sim::SimParams sim;
   sim::CameraParams camera;
+  vector::HairStyle style;
+  Eigen::Vector3d light_dir = sim::default_light_dir();  // unit, world, towards the light
+  RenderParams render;
 };
 
 // Reads and validates a scene file. Throws std::invalid_argument / std::runtime_error with a
@@ -32,5 +52,12 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& path);
 // Everything the simulator needs from a scene: reads the head mesh (OBJ) and the hair file if the
 // scene names them, builds or selects the guides. Errors name the file and the scene field.
 sim::SimSetup load_sim_setup(const Scene& scene);
+
+// The body the scene draws (render.body, render.torso) around its head (sim::body_params): all
+// parts off when render.body is false.
+sim::BodyParams body_params(const Scene& scene);
+
+// Projector options for the scene: its light, and its drawn neck and torso as occluders.
+sim::ProjectorOptions projector_options(const Scene& scene);
 
 }  // namespace wisp::io

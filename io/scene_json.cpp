@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -85,6 +86,15 @@ class Fields {
   }
   void get(const char* key, Eigen::Vector3d& out) {
     if (const json* v = find(key)) out = vector3(*v, name(key));
+  }
+  // An RGB colour: [r, g, b] with every component in [0, 1].
+  void color(const char* key, Eigen::Vector3f& out) {
+    if (const json* v = find(key)) {
+      const Eigen::Vector3d c = vector3(*v, name(key));
+      if (c.minCoeff() < 0 || c.maxCoeff() > 1)
+        fail(name(key), "colour components must be in [0, 1], got " + v->dump());
+      out = c.cast<float>();
+    }
   }
   // One of `choices`.
   void choice(const char* key, std::string& out, const std::vector<std::string>& choices) {
@@ -267,6 +277,8 @@ void parse_sim(Fields& f, Scene& s) {
   require(f, p.collision_margin >= 0, "collision_margin", "must be >= 0 (m)");
   f.get("max_speed", p.max_speed);
   require(f, p.max_speed > 0, "max_speed", "must be positive (m/s)");
+  f.get("preroll", p.preroll);
+  require(f, p.preroll >= 0 && p.preroll <= 600, "preroll", "must be in [0, 600] seconds");
   if (const json* wind = f.find("wind")) {
     Fields w(*wind, "sim.wind", f.file());
     w.get("velocity", p.wind.velocity);
@@ -297,11 +309,99 @@ void parse_camera(Fields& f, Scene& s) {
   require(f, c.hysteresis >= 0, "hysteresis", "must be >= 0 (m)");
 }
 
-// The parts of a scene; later issues add `style`, `light` and `render` here.
+// The `style` part, one entry per JSON field: presets and lighting fields join this table.
+using StyleField = std::function<void(Fields&, const char* key, vector::HairStyle&)>;
+
+const std::vector<std::pair<const char*, StyleField>>& style_fields() {
+  using vector::HairStyle;
+  static const std::vector<std::pair<const char*, StyleField>> table = {
+      {"width",
+       [](Fields& f, const char* k, HairStyle& s) {
+         f.get(k, s.geometry.width);
+         require(f, s.geometry.width > 0 && s.geometry.width <= 1, k,
+                 "must be a width in (0, 1] metres");
+       }},
+      {"profile",
+       [](Fields& f, const char* k, HairStyle& s) {
+         if (!f.find(k)) return;
+         std::string name = "taper";
+         f.choice(k, name, {"taper", "sine"});
+         s.geometry.profile =
+             name == "sine" ? vector::WidthProfile::shin() : vector::WidthProfile::faraj_taper();
+       }},
+      {"curvature_clamp",
+       [](Fields& f, const char* k, HairStyle& s) {
+         const json* v = f.find(k);
+         if (!v) return;
+         if (v->is_null()) {
+           s.geometry.curvature_clamp = std::numeric_limits<double>::infinity();
+           return;
+         }
+         s.geometry.curvature_clamp = f.number(*v, f.name(k));
+         require(f, s.geometry.curvature_clamp > 0, k, "must be > 0 (null disables the clamp)");
+       }},
+      {"hair_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.hair); }},
+      {"shadow_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.shadow); }},
+      {"highlight_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.highlight); }},
+      {"highlight_along",
+       [](Fields& f, const char* k, HairStyle& s) {
+         f.get(k, s.highlight_along);
+         require(f, s.highlight_along >= 0 && s.highlight_along <= 1, k, "must be in [0, 1]");
+       }},
+      {"highlight_spread",
+       [](Fields& f, const char* k, HairStyle& s) {
+         f.get(k, s.highlight_spread);
+         require(f, s.highlight_spread > 0 && s.highlight_spread <= 1, k, "must be in (0, 1]");
+       }},
+      {"highlight_side",
+       [](Fields& f, const char* k, HairStyle& s) {
+         std::string side = s.highlight_on_left ? "left" : "right";
+         f.choice(k, side, {"left", "right"});
+         s.highlight_on_left = side == "left";
+       }},
+  };
+  return table;
+}
+
+void parse_style(Fields& f, Scene& s) {
+  for (const auto& [key, read] : style_fields()) read(f, key, s.style);
+  try {
+    vector::validate(s.style.geometry);
+  } catch (const std::invalid_argument& e) {
+    f.fail("style", e.what());
+  }
+}
+
+void parse_light(Fields& f, Scene& s) {
+  f.get("direction", s.light_dir);
+  require(f, s.light_dir.norm() > 1e-9, "direction", "must be a non-zero vector");
+  s.light_dir.normalize();
+}
+
+void parse_render(Fields& f, Scene& s) {
+  RenderParams& r = s.render;
+  f.color("background_color", r.background_color);
+  f.color("skin_color", r.skin_color);
+  f.get("body", r.body);
+  f.get("torso", r.torso);
+  f.get("solver_tolerance", r.solver_tolerance);
+  require(f, r.solver_tolerance > 0 && r.solver_tolerance < 1, "solver_tolerance",
+          "must be in (0, 1) (relative residual)");
+  f.get("warm_start_block", r.warm_start_block);
+  require(f, r.warm_start_block >= 1 && r.warm_start_block <= 100000, "warm_start_block",
+          "must be in [1, 100000] frames");
+  f.get("video", r.video);
+  f.get("contact_sheet_columns", r.contact_sheet_columns);
+  require(f, r.contact_sheet_columns >= 1 && r.contact_sheet_columns <= 100,
+          "contact_sheet_columns", "must be in [1, 100]");
+}
+
+// The parts of a scene.
 const std::map<std::string, std::function<void(Fields&, Scene&)>>& parts() {
   static const std::map<std::string, std::function<void(Fields&, Scene&)>> table = {
-      {"head", parse_head}, {"hair", parse_hair},     {"motion", parse_motion},
-      {"sim", parse_sim},   {"camera", parse_camera},
+      {"head", parse_head},   {"hair", parse_hair},     {"motion", parse_motion},
+      {"sim", parse_sim},     {"camera", parse_camera}, {"style", parse_style},
+      {"light", parse_light}, {"render", parse_render},
   };
   return table;
 }

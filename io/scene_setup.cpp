@@ -1,5 +1,7 @@
 // load_sim_setup: turns a scene into the simulator's input, reading the files it names (head
-// mesh, strand file). See scene.hpp.
+// mesh, strand file); body_params and projector_options: what the renderer draws and projects.
+// See scene.hpp.
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -60,6 +62,21 @@ sim::SimSetup load_sim_setup(const Scene& scene) {
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file + ": " + e.what());
   }
+}
+
+sim::BodyParams body_params(const Scene& scene) {
+  sim::BodyParams body = sim::body_params(scene.head);
+  body.head = scene.render.body;
+  body.neck = body.torso = scene.render.body && scene.render.torso;
+  return body;
+}
+
+sim::ProjectorOptions projector_options(const Scene& scene) {
+  sim::ProjectorOptions options;
+  options.light_dir = scene.light_dir;
+  const sim::BodyParams body = body_params(scene);
+  if (body.neck || body.torso) options.body = std::make_shared<const sim::BodyParams>(body);
+  return options;
 }
 
 }  // namespace wisp::io

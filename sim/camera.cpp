@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/body.hpp"
+
 namespace wisp::sim {
 namespace {
 
@@ -57,8 +59,16 @@ struct Projector::Bullet {
   btCollisionObject outer, inner;
 };
 
-Projector::Projector(const HeadGeometry& head, const CameraParams& camera)
-    : camera_(Camera::look_at(camera)), hysteresis_(camera.hysteresis), bullet_(new Bullet) {
+Projector::Projector(const HeadGeometry& head, const CameraParams& camera,
+                     const ProjectorOptions& options)
+    : camera_(Camera::look_at(camera)),
+      hysteresis_(camera.hysteresis),
+      options_(options),
+      bullet_(new Bullet) {
+  if (!(options_.light_dir.norm() > 1e-12) || !options_.light_dir.allFinite())
+    throw std::invalid_argument("light.direction: must be a finite non-zero vector");
+  options_.light_dir.normalize();
+  if (options_.body) validate(*options_.body);
   Bullet& b = *bullet_;
   if (head.shape == "ellipsoid") {
     const btVector3 centre(0, 0, 0);
@@ -99,8 +109,11 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
   b.inner.setWorldTransform(pose);
   const btTransform from(btQuaternion::getIdentity(), bt(camera_.eye));
 
-  // Is the ray from the eye to `x` blocked by `obj` clearly before reaching x?
-  const auto blocked = [&](btCollisionObject& obj, const Vector3d& x, double dist) {
+  // Is the ray from the eye to `x` blocked by `obj` (or the body, shrunk by `shrink`) clearly
+  // before reaching x?
+  const BodyParams* body = options_.body.get();
+  const auto blocked = [&](btCollisionObject& obj, const Vector3d& x, double dist, double shrink) {
+    if (body && body_blocks(*body, frame.head, camera_.eye, x, shrink, hysteresis_)) return true;
     const btTransform to(btQuaternion::getIdentity(), bt(x));
     btCollisionWorld::ClosestRayResultCallback cb(from.getOrigin(), to.getOrigin());
     btCollisionWorld::rayTestSingle(from, to, &obj, obj.getCollisionShape(),
@@ -120,6 +133,7 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
   out.height = camera_.height;
   out.focal_px = camera_.focal_px;
   out.eye = camera_.eye;
+  out.light_dir = options_.light_dir;
   out.strands.resize(frame.strands.size());
   for (std::size_t s = 0; s < frame.strands.size(); ++s) {
     const Polyline& line = frame.strands[s];
@@ -144,10 +158,10 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
       if ((x - camera_.eye).dot(camera_.forward) <= 1e-6) {
         vis = 0;  // behind the eye
       } else {
-        const bool outer_blocks = blocked(b.outer, x, ps.depth[i]);
+        const bool outer_blocks = blocked(b.outer, x, ps.depth[i], 0.0);
         if (!outer_blocks)
           vis = 1;
-        else if (fresh || blocked(b.inner, x, ps.depth[i]))
+        else if (fresh || blocked(b.inner, x, ps.depth[i], hysteresis_))
           vis = 0;
         else
           vis = visible_[s][i];

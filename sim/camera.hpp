@@ -8,9 +8,14 @@
 // hysteresis over frames, so samples near the head's silhouette do not flicker: a visible sample
 // becomes hidden only when the ray is blocked by the head shrunk by `hysteresis`, a hidden one
 // becomes visible only when the ray clears the full head; in between it keeps its state.
+//
+// With ProjectorOptions::body, the drawn neck and torso (sim/body.hpp) hide strands too, with the
+// same hysteresis (analytic capsules and ellipsoid, shrunk by `hysteresis` for the inner test).
+// Every frame carries ProjectorOptions::light_dir (the scene's light) for shading.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "sim/animation.hpp"
@@ -32,9 +37,18 @@ struct Camera {
   Eigen::Vector2d project(const Eigen::Vector3d& world, double* depth = nullptr) const;
 };
 
+struct BodyParams;
+
+struct ProjectorOptions {
+  Eigen::Vector3d light_dir = default_light_dir();  // copied into every frame (normalised)
+  std::shared_ptr<const BodyParams> body;           // occluding neck and torso; null: none
+};
+
 class Projector {
  public:
-  Projector(const HeadGeometry& head, const CameraParams& camera);
+  // Throws std::invalid_argument for a degenerate camera or a zero light direction.
+  Projector(const HeadGeometry& head, const CameraParams& camera,
+            const ProjectorOptions& options = {});
   ~Projector();
 
   const Camera& camera() const { return camera_; }
@@ -47,6 +61,7 @@ class Projector {
   struct Bullet;
   Camera camera_;
   double hysteresis_;
+  ProjectorOptions options_;
   std::unique_ptr<Bullet> bullet_;
   std::vector<std::vector<std::uint8_t>> visible_;
 };

@@ -21,7 +21,7 @@ struct HeadParams {
   std::filesystem::path mesh;                  // OBJ file for shape "mesh" (absolute once loaded)
   double mesh_scale = 1.0;                     // OBJ units to metres
   Eigen::Vector3d mesh_offset = Eigen::Vector3d::Zero();  // added after scaling (m)
-  bool shoulders = false;  // a capsule under the head that strands also collide with
+  bool shoulders = false;  // strands also collide with the body: shoulder capsule, neck, chest
   Eigen::Vector3d shoulder_center{0.0, -0.25, -0.02};  // capsule centre, body frame (m)
   double shoulder_half_width = 0.16;                   // capsule half length along x (m)
   double shoulder_radius = 0.07;                       // capsule radius (m)
@@ -86,8 +86,15 @@ struct SimParams {
   bool collision = true;        // strands collide with the head (and shoulders)
   double collision_margin = 0.003;  // strands keep this far from the head surface (m)
   double max_speed = 60.0;          // a sample faster than this means the integrator blew up (m/s)
+  double preroll = 0.0;  // seconds simulated before frame 0, the head held at its first pose
   WindParams wind;
 };
+
+// The default light: from the upper front left (world; the head faces +z, x to the viewer's
+// right), unit length. Used when a scene has no `light` part.
+inline Eigen::Vector3d default_light_dir() {
+  return Eigen::Vector3d(-0.45, 0.6, 0.66).normalized();
+}
 
 struct CameraParams {
   Eigen::Vector3d eye{0.0, 0.0, 1.1};

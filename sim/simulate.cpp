@@ -15,7 +15,12 @@ namespace wisp::sim {
 using Eigen::Vector3d;
 
 Environment::Environment(const SimSetup& setup)
-    : head_(setup.head), motion_(setup.motion), shoulders_(setup.shoulders), params_(setup.sim) {
+    : head_(setup.head),
+      motion_(setup.motion),
+      shoulders_(setup.shoulders),
+      body_(setup.body),
+      params_(setup.sim) {
+  if (body_) validate(*body_);
   // Three incommensurate sines per gust signal, with seeded phases: smooth, never periodic
   // within a shot, identical for a given seed.
   Rng rng(params_.wind.seed);
@@ -47,6 +52,14 @@ double Environment::distance(const Vector3d& x, const HeadPose& pose, Vector3d* 
     if (ds < d) {
       d = ds;
       if (normal) *normal = ns;
+    }
+  }
+  if (body_) {
+    Vector3d nb;
+    const double db = body_distance(*body_, pose, x, &nb);
+    if (db < d) {
+      d = db;
+      if (normal) *normal = nb;
     }
   }
   return d;
@@ -89,6 +102,8 @@ void check_sim_params(const SimParams& s) {
   non_negative(s.air_drag, "air_drag");
   non_negative(s.collision_margin, "collision_margin");
   positive(s.max_speed, "max_speed");
+  non_negative(s.preroll, "preroll");
+  if (s.preroll > 600) fail("preroll", "must be at most 600 seconds");
   if (!s.wind.velocity.allFinite()) fail("wind.velocity", "not a finite vector");
   non_negative(s.wind.gust, "wind.gust");
   non_negative(s.wind.gust_frequency, "wind.gust_frequency");
@@ -101,8 +116,10 @@ SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, con
   setup.head.shape = head.shape;
   setup.head.radii = head.radii;
   setup.head.mesh = mesh;
-  if (head.shoulders)
+  if (head.shoulders) {
     setup.shoulders = Capsule{head.shoulder_center, head.shoulder_half_width, head.shoulder_radius};
+    setup.body = body_params(head);  // the drawn neck and chest collide too
+  }
   setup.motion = motion_keys(motion);
   setup.duration = motion.duration;
   setup.sim = sim;
@@ -158,7 +175,9 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   anim.fps = sp.fps;
   anim.head = setup.head;
   anim.frames.reserve(frames);
-  long step = 0;
+  // The pre-roll runs steps at negative times, where the motion holds its first pose: the hair
+  // settles from its rest shape before frame 0.
+  long step = -std::lround(sp.preroll * sp.step_rate);
   for (int f = 0; f < frames; ++f) {
     // Frame f shows the state at the physics step nearest its time.
     const long target = std::lround(f / sp.fps * sp.step_rate);

@@ -1,8 +1,9 @@
 // Runs a strand simulation from a prepared setup to an Animation. The physics advances in fixed
 // steps of 1/sim.step_rate seconds (each split into sim.substeps), whatever the frame rate; a frame
-// is the state at the step nearest its time. Every step is checked: a non-finite position or a
-// sample faster than sim.max_speed stops the run with an error naming the frame, so a blown-up
-// integrator never writes NaNs into an animation.
+// is the state at the step nearest its time. With sim.preroll > 0 the run starts that many seconds
+// before frame 0 with the head still at its first pose, so frame 0 shows settled hair. Every step
+// is checked: a non-finite position or a sample faster than sim.max_speed stops the run with an
+// error naming the frame, so a blown-up integrator never writes NaNs into an animation.
 #pragma once
 
 #include <functional>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "sim/animation.hpp"
+#include "sim/body.hpp"
 #include "sim/params.hpp"
 
 namespace wisp::sim {
@@ -17,6 +19,7 @@ namespace wisp::sim {
 struct SimSetup {
   HeadGeometry head;
   std::optional<Capsule> shoulders;  // body frame (see head.hpp)
+  std::optional<BodyParams> body;    // neck and chest colliders (sim/body.hpp body_distance)
   std::vector<Keyframe> motion;      // expanded keyframes (sim/motion.hpp)
   double duration = 4.0;             // seconds
   std::vector<Polyline> rest;        // guides at rest, head-local metres, root first

@@ -27,17 +27,18 @@ class Environment {
   // Wind velocity at world point x and time t: the mean wind plus gusts that travel along it.
   Eigen::Vector3d wind(double t, const Eigen::Vector3d& x) const;
 
-  // Signed distance of world point x to the head and shoulders (the nearer), with the outward
-  // unit normal in world space.
+  // Signed distance of world point x to the head, shoulders, neck and chest (the nearest), with
+  // the outward unit normal in world space.
   double distance(const Eigen::Vector3d& x, const HeadPose& pose, Eigen::Vector3d* normal) const;
 
-  // Moves x out to at least `margin` from the head and shoulders. Returns true if it moved.
+  // Moves x out to at least `margin` from the head and body. Returns true if it moved.
   bool push_out(Eigen::Vector3d& x, const HeadPose& pose, double margin) const;
 
  private:
   HeadShape head_;
   HeadMotion motion_;
   std::optional<Capsule> shoulders_;
+  std::optional<BodyParams> body_;
   SimParams params_;
   double gust_phase_[3], gust_rate_[3];
 };

@@ -20,7 +20,7 @@ double outline_parameter(const Wisp& wisp, double t, bool left_side);
 // One curve per wisp that has a visible interval, in wisp order; `visible[i]` (the
 // arrangement's intervals for wisp i) becomes the curve's active set.
 std::vector<diffusion::DiffusionCurve> hair_curves(
-    const std::vector<Wisp>& wisps, const std::vector<std::vector<std::pair<double, double>>>& visible,
-    const HairStyle& style);
+    const std::vector<Wisp>& wisps,
+    const std::vector<std::vector<std::pair<double, double>>>& visible, const HairStyle& style);
 
 }  // namespace wisp::vector

@@ -12,15 +12,19 @@
 namespace wisp::vector {
 
 struct HairStyle {
-  WispStyle geometry;
+  // A wisp stands for a clump of hair: about 2.8 cm wide at the root, so that some 150 guides
+  // cover a head.
+  WispStyle geometry = [] {
+    WispStyle g;
+    g.width = 0.028;
+    return g;
+  }();
   Eigen::Vector3f hair{0.42f, 0.25f, 0.13f};       // inside colour, linear RGB in [0,1]
   Eigen::Vector3f shadow{0.10f, 0.06f, 0.04f};     // outside colour
   Eigen::Vector3f highlight{0.80f, 0.58f, 0.34f};  // Faraj's colour point
-  double highlight_along = 0.35;  // where the colour point sits along the wisp (0 root, 1 tip)
+  double highlight_along = 0.35;   // where the colour point sits along the wisp (0 root, 1 tip)
   double highlight_spread = 0.25;  // its extent along the wisp, as a fraction of the length
   bool highlight_on_left = true;   // which side of every wisp carries it
-  // Temporal coherence: a wisp that appears or disappears fades over this many frames.
-  int fade_frames = 4;
 };
 
 }  // namespace wisp::vector

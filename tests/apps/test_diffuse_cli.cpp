@@ -22,12 +22,13 @@ const std::string kData = WISP_SOURCE_DIR "/data/drawings/";
 TEST_CASE("wisp diffuse renders every external drawing; fixed pixels keep their colours",
           "[cli][diffuse]") {
   const std::string out = fresh_folder("diffuse_external");
-  for (const char* name : {"bubble", "crane", "crane_ribbons", "drape", "ladybug", "pepper",
-                           "portal", "sunset"}) {
+  for (const char* name :
+       {"bubble", "crane", "crane_ribbons", "drape", "ladybug", "pepper", "portal", "sunset"}) {
     INFO(name);
     const std::string xml = kData + "external/" + name + ".xml";
     const std::string png = out + "/" + name + ".png", stats = out + "/" + name + ".json";
-    const auto r = run_command(kWisp + " diffuse " + xml + " -o " + png + " --size 256x256 --stats " + stats);
+    const auto r =
+        run_command(kWisp + " diffuse " + xml + " -o " + png + " --size 256x256 --stats " + stats);
     REQUIRE(r.exit_code == 0);
     const cv::Mat img = cv::imread(png, cv::IMREAD_COLOR);
     REQUIRE(img.rows == 256);
@@ -56,8 +57,7 @@ TEST_CASE("wisp diffuse renders every external drawing; fixed pixels keep their 
       if (!p.fixed[i]) continue;
       ++fixed;
       const cv::Vec3b px = img.at<cv::Vec3b>(int(i / 256), int(i % 256));
-      for (int c = 0; c < 3; ++c)
-        CHECK(std::abs(px[2 - c] - p.value[c * n + i] * 255.0f) <= 0.51f);
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(px[2 - c] - p.value[c * n + i] * 255.0f) <= 0.51f);
     }
     CHECK(fixed > 100);
   }
@@ -66,10 +66,12 @@ TEST_CASE("wisp diffuse renders every external drawing; fixed pixels keep their 
 TEST_CASE("wisp diffuse writes the drawing's own size by default and honours --scale",
           "[cli][diffuse]") {
   const std::string out = fresh_folder("diffuse_size");
-  REQUIRE(run_command(kWisp + " diffuse " + kData + "external/pepper.xml -o " + out + "/a.png").exit_code == 0);
+  REQUIRE(run_command(kWisp + " diffuse " + kData + "external/pepper.xml -o " + out + "/a.png")
+              .exit_code == 0);
   CHECK(cv::imread(out + "/a.png").cols == 512);
   REQUIRE(run_command(kWisp + " diffuse " + kData + "external/pepper.xml -o " + out +
-                      "/b.png --scale 0.25").exit_code == 0);
+                      "/b.png --scale 0.25")
+              .exit_code == 0);
   CHECK(cv::imread(out + "/b.png").cols == 128);
 }
 
@@ -84,18 +86,22 @@ TEST_CASE("wisp diffuse rejects bad input with one line, exit code 2 and no outp
   const std::string points =
       "<control_points_set><control_point x=\"1\" y=\"2\"/><control_point x=\"3\" y=\"4\"/>"
       "<control_point x=\"5\" y=\"6\"/><control_point x=\"7\" y=\"NaN\"/></control_points_set>";
-  const std::string colours = "<left_colors_set><left_color R=\"1\" G=\"2\" B=\"3\" globalID=\"0\"/>"
-                              "</left_colors_set><right_colors_set><right_color R=\"1\" G=\"2\" "
-                              "B=\"3\" globalID=\"0\"/></right_colors_set>";
+  const std::string colours =
+      "<left_colors_set><left_color R=\"1\" G=\"2\" B=\"3\" globalID=\"0\"/>"
+      "</left_colors_set><right_colors_set><right_color R=\"1\" G=\"2\" "
+      "B=\"3\" globalID=\"0\"/></right_colors_set>";
   const struct {
     std::string args, expected;
   } cases[] = {
       {write("malformed.xml", "<!DOCTYPE SceneXML><scene image_width=\"4\">"), "malformed XML"},
-      {write("nan.xml", "<!DOCTYPE SceneXML><scene image_width=\"64\" image_height=\"64\">"
-                        "<curve_set><curve>" + points + colours + "</curve></curve_set></scene>"),
+      {write("nan.xml",
+             "<!DOCTYPE SceneXML><scene image_width=\"64\" image_height=\"64\">"
+             "<curve_set><curve>" +
+                 points + colours + "</curve></curve_set></scene>"),
        "not a finite number"},
-      {write("counts.xml", "<!DOCTYPE SceneXML><scene image_width=\"64\" image_height=\"64\">"
-                           "<curve_set nb_curves=\"2\"></curve_set></scene>"),
+      {write("counts.xml",
+             "<!DOCTYPE SceneXML><scene image_width=\"64\" image_height=\"64\">"
+             "<curve_set nb_curves=\"2\"></curve_set></scene>"),
        "nb_curves=2 but 0"},
       {good + " --size 20000x100", "16384"},
       {good + " --size 0x100", "between 1 and"},

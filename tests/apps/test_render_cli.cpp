@@ -1,6 +1,8 @@
 // `wisp render` end to end on the default scene at 256x256: every output valid, PNG and SVG
 // agree, hair where the strands are and in the style's colours, deterministic, resumable,
 // coherent over time, and bad input refused cleanly.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -35,10 +37,11 @@ std::string read_file(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// The default scene simulated once for all tests of this file.
+// The default scene simulated once per test process (ctest runs test cases in parallel
+// processes, so each has its own copy).
 const std::string& animation() {
   static const std::string path = [] {
-    const std::string dir = fresh_folder("render_anim");
+    const std::string dir = fresh_folder("render_anim_" + std::to_string(getpid()));
     const std::string wsim = dir + "/default.wsim";
     const auto r = run_command(kWisp + " simulate " + kScene + " -o " + wsim + " -q");
     REQUIRE(r.exit_code == 0);
@@ -48,8 +51,8 @@ const std::string& animation() {
 }
 
 std::string render(const std::string& dir, const std::string& extra = "") {
-  const auto r = run_command(kWisp + " render " + kScene + " -o " + dir + " --size 256x256 --anim " +
-                             animation() + " -q " + extra);
+  const auto r = run_command(kWisp + " render " + kScene + " -o " + dir +
+                             " --size 256x256 --anim " + animation() + " -q " + extra);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   return dir;
@@ -115,8 +118,9 @@ TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "
     for (const auto& p : hullf) hull.emplace_back(int(std::lround(p.x)), int(std::lround(p.y)));
     cv::Mat inside = cv::Mat::zeros(256, 256, CV_8U);
     cv::fillConvexPoly(inside, hull, 255);
-    cv::dilate(inside, inside, cv::getStructuringElement(cv::MORPH_ELLIPSE,
-                                                         cv::Size(int(2 * widest) + 3, int(2 * widest) + 3)));
+    cv::dilate(inside, inside,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                                         cv::Size(int(2 * widest) + 3, int(2 * widest) + 3)));
     cv::Mat outside_hull;
     cv::bitwise_and(mask > 0, ~inside, outside_hull);
     CHECK(cv::countNonZero(outside_hull) == 0);
@@ -169,7 +173,8 @@ TEST_CASE("a killed render resumes to the same files as an uninterrupted one", "
   for (int k = 0; k < 12; ++k) {
     INFO("frame " << k);
     CHECK(read_file(frame(whole, k)) == read_file(frame(part, k)));
-    CHECK(read_file(frame(whole, k, "frame_", "svg")) == read_file(frame(part, k, "frame_", "svg")));
+    CHECK(read_file(frame(whole, k, "frame_", "svg")) ==
+          read_file(frame(part, k, "frame_", "svg")));
   }
   // A later run skips what exists; --force renders again, to the same bytes.
   const std::string before = read_file(frame(part, 3));
@@ -184,7 +189,8 @@ TEST_CASE("hair does not pop between frames of a slow turn", "[cli][render]") {
   std::vector<double> change;
   cv::Mat prev;
   for (int k = 0; k < 24; ++k) {
-    cv::Mat img = cv::imread(frame(dir, k), cv::IMREAD_COLOR), mask = cv::imread(frame(dir, k, "mask_"), cv::IMREAD_GRAYSCALE);
+    cv::Mat img = cv::imread(frame(dir, k), cv::IMREAD_COLOR),
+            mask = cv::imread(frame(dir, k, "mask_"), cv::IMREAD_GRAYSCALE);
     img.convertTo(img, CV_32FC3);
     if (!prev.empty()) {
       cv::Mat diff;

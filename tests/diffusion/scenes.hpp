@@ -18,7 +18,7 @@ using diffusion::DiffusionCurve;
 inline DiffusionCurve circle(double cx, double cy, double r, Color inside, Color outside) {
   DiffusionCurve c;
   const double k = 0.5522847498 * r;  // cubic approximation of a quarter circle
-  const double pts[13][2] = {{r, 0},  {r, k},   {k, r},   {0, r},  {-k, r},  {-r, k}, {-r, 0},
+  const double pts[13][2] = {{r, 0},   {r, k},   {k, r},  {0, r},  {-k, r}, {-r, k}, {-r, 0},
                              {-r, -k}, {-k, -r}, {0, -r}, {k, -r}, {r, -k}, {r, 0}};
   for (const auto& p : pts) c.points.emplace_back(cx + p[0], cy + p[1]);
   c.left = {{0, inside}, {1, inside}};

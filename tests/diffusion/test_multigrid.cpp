@@ -87,8 +87,7 @@ void check_second_order(const std::function<double(double, double)>& u,
 
 }  // namespace
 
-TEST_CASE("multigrid matches the exact discrete solution on random curve layouts",
-          "[multigrid]") {
+TEST_CASE("multigrid matches the exact discrete solution on random curve layouts", "[multigrid]") {
   for (int size : {64, 128, 256}) {
     for (unsigned seed : {1u, 2u, 3u}) {
       const Problem p = random_layout(size, seed * 7 + size, 6, seed == 3);
@@ -137,12 +136,8 @@ TEST_CASE("V-cycles reduce the residual at least fivefold per cycle on thin curv
     const Eigen::Vector2d c(cx, cy);
     DiffusionCurve w;
     // Root -> tip along one side, tip -> root along the other: a closed thin wisp.
-    w.points = {c - len * d,
-                c - len * d + width * nrm,
-                c + len * d + width * nrm,
-                c + len * d,
-                c + len * d - width * nrm,
-                c - len * d - width * nrm,
+    w.points = {c - len * d, c - len * d + width * nrm, c + len * d + width * nrm,
+                c + len * d, c + len * d - width * nrm, c - len * d - width * nrm,
                 c - len * d};
     w.left = {{0, Color(0.8f, 0.6f, 0.3f)}, {1, Color(0.6f, 0.4f, 0.2f)}};
     w.right = {{0, Color(0.1f, 0.1f, 0.1f)}, {1, Color(0.2f, 0.2f, 0.2f)}};
@@ -160,8 +155,7 @@ TEST_CASE("V-cycles reduce the residual at least fivefold per cycle on thin curv
 
 TEST_CASE("V-cycles reduce the residual at least fivefold per cycle across Neumann barriers",
           "[multigrid][rate]") {
-  const auto line = [](double x0, double y0, double x1, double y1, Boundary left,
-                       Boundary right) {
+  const auto line = [](double x0, double y0, double x1, double y1, Boundary left, Boundary right) {
     DiffusionCurve c;
     const Eigen::Vector2d a(x0, y0), b(x1, y1);
     c.points = {a, a + (b - a) / 3, a + 2 * (b - a) / 3, b};
@@ -240,7 +234,8 @@ TEST_CASE("a closed circle with one inside colour is that colour everywhere insi
   for (int y = 0; y < 200; ++y)
     for (int x = 0; x < 200; ++x) {
       if (std::hypot(x + 0.5 - 100, y + 0.5 - 90) >= 44) continue;
-      for (int c = 0; c < 3; ++c) CHECK(std::abs(s.planes[c * n + p.index(x, y)] - inside[c]) <= 1e-3f);
+      for (int c = 0; c < 3; ++c)
+        CHECK(std::abs(s.planes[c * n + p.index(x, y)] - inside[c]) <= 1e-3f);
       ++checked;
     }
   CHECK(checked > 5000);
@@ -260,8 +255,7 @@ TEST_CASE("the result does not depend on the number of threads", "[multigrid]") 
   CHECK(one == two);
 }
 
-TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewer",
-          "[multigrid]") {
+TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewer", "[multigrid]") {
   const Problem p = random_layout(128, 17, 6, false);
   SolverOptions tight;
   tight.tolerance = 1e-9;
@@ -283,8 +277,7 @@ TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewe
   CHECK(max_abs_difference(cold.planes, exact.planes) <= 1e-4f);
 }
 
-TEST_CASE("a region sealed by insulating curves has no colour and is reported",
-          "[multigrid]") {
+TEST_CASE("a region sealed by insulating curves has no colour and is reported", "[multigrid]") {
   auto sealed = circle(32, 32, 12, Color(1, 0, 0), Color(0, 0, 1));
   sealed.left_boundary = Boundary::Neumann;  // the inside gets nothing
   const Problem p = rasterize({sealed}, 64, 64);

@@ -56,8 +56,7 @@ std::vector<std::uint8_t> flood(const Problem& p, int x, int y) {
 
 }  // namespace
 
-TEST_CASE("a circle fixes its inside colour inside and its outside colour outside",
-          "[rasterize]") {
+TEST_CASE("a circle fixes its inside colour inside and its outside colour outside", "[rasterize]") {
   const auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
   const Problem p = rasterize({c}, 64, 64);
   const size_t n = p.pixel_count();
@@ -120,13 +119,11 @@ TEST_CASE("every fixed pixel lies on the side whose colour it took, for crossing
   CHECK(fixed > 300);
 }
 
-TEST_CASE("a closed curve cuts every link between its inside and its outside",
-          "[rasterize]") {
+TEST_CASE("a closed curve cuts every link between its inside and its outside", "[rasterize]") {
   // A thin wavy closed wisp (about 1.2 pixels wide in places): flooding from outside never
   // reaches a pixel whose centre is inside.
   DiffusionCurve w;
-  w.points = {{10, 30}, {30, 10},   {60, 50},   {90, 30},  {91.2, 31},
-              {61, 51.2}, {31, 11.2}, {10, 30}};
+  w.points = {{10, 30}, {30, 10}, {60, 50}, {90, 30}, {91.2, 31}, {61, 51.2}, {31, 11.2}, {10, 30}};
   w.points.resize(7);
   w.points.back() = w.points.front();
   w.left = {{0, Color(1, 0, 0)}};
@@ -137,8 +134,8 @@ TEST_CASE("a closed curve cuts every link between its inside and its outside",
     for (int x = 0; x < 100; ++x) {
       const Eigen::Vector2d q(x + 0.5, y + 0.5);
       // The wisp runs root -> tip above and back below: inside is on its right side.
-      if (outside[p.index(x, y)]) CHECK(!(side_of(w, q) < -0.05 && p.fixed[p.index(x, y)] &&
-                                          p.value[p.index(x, y)] == 1.0f));
+      if (outside[p.index(x, y)])
+        CHECK(!(side_of(w, q) < -0.05 && p.fixed[p.index(x, y)] && p.value[p.index(x, y)] == 1.0f));
     }
   // And no inside (red) colour anywhere reachable from the outside through open links.
   const size_t n = p.pixel_count();
@@ -230,8 +227,8 @@ TEST_CASE("a gradient curve imposes its colour jump, not its colours", "[rasteri
   // circle whose right-minus-left jump is -0.3 going outwards: the inside must come out at
   // 0.2 + 0.3 = 0.5 exactly, although no pixel is fixed to 0.5 anywhere.
   DiffusionCurve frame;
-  frame.points = {{2, 2}, {30, 2}, {60, 2}, {62, 2}, {62, 30}, {62, 60}, {62, 62},
-                  {30, 62}, {4, 62}, {2, 62}, {2, 30}, {2, 4}, {2, 2}};
+  frame.points = {{2, 2},   {30, 2}, {60, 2}, {62, 2}, {62, 30}, {62, 60}, {62, 62},
+                  {30, 62}, {4, 62}, {2, 62}, {2, 30}, {2, 4},   {2, 2}};
   frame.left = {{0, Color(0.2f, 0.2f, 0.2f)}};
   frame.right = frame.left;
   auto g = circle(32, 32, 12, Color(0.5f, 0.5f, 0.5f), Color(0.2f, 0.2f, 0.2f));

@@ -47,8 +47,7 @@ TEST_CASE("blur values along a curve blur the edge like a Gaussian of that sigma
   }
 }
 
-TEST_CASE("the blur ladder is exact on its rungs and between them stays between them",
-          "[render]") {
+TEST_CASE("the blur ladder is exact on its rungs and between them stays between them", "[render]") {
   std::vector<float> img(64 * 64, 0.0f);
   img[32 * 64 + 32] = 1.0f;
   const auto blurred = [&](float s) {

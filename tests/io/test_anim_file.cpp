@@ -1,5 +1,7 @@
 // The saved animation (.wsim): bit-exact round trip, determinism of `simulate` + write, and
 // rejection of truncated, corrupt and foreign files.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -15,7 +17,8 @@ using Eigen::Vector3d;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / "wisp_test_anim_file";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wisp_test_anim_file_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }

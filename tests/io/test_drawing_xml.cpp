@@ -1,4 +1,6 @@
 // Diffusion-curve XML: both dialects, their swaps, round trips, and clear errors.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <map>
@@ -48,9 +50,9 @@ const std::string kColours =
 }  // namespace
 
 TEST_CASE("all eight small-usvg scenes read, with their unsupported parts reported", "[xml]") {
-  const std::map<std::string, size_t> curves = {{"bubble", 9},   {"crane", 68},  {"crane_ribbons", 62},
-                                                {"drape", 87},   {"ladybug", 59}, {"pepper", 36},
-                                                {"portal", 0},   {"sunset", 0}};
+  const std::map<std::string, size_t> curves = {
+      {"bubble", 9},   {"crane", 68},  {"crane_ribbons", 62}, {"drape", 87},
+      {"ladybug", 59}, {"pepper", 36}, {"portal", 0},         {"sunset", 0}};
   for (const auto& [name, count] : curves) {
     const io::DrawingFile f = io::read_drawing_xml(kData + name + ".xml");
     INFO(name);
@@ -99,7 +101,8 @@ TEST_CASE("writing then reading gives identical curves", "[xml]") {
 }
 
 TEST_CASE("files are written whole through a temporary name", "[xml]") {
-  const auto dir = std::filesystem::temp_directory_path() / "wisp_xml_test";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wisp_xml_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const io::DrawingFile a = io::read_drawing_xml(kData + "bubble.xml");
   io::write_drawing_xml(a.drawing, dir / "out.xml");
@@ -126,9 +129,10 @@ TEST_CASE("bad drawings fail with the file, line and element named", "[xml]") {
   std::string nan = curve_set(kPoints + kColours);
   nan.replace(nan.find("x=\"11\""), 6, "x=\"nan\"");
   fails(nan, "<control_point>: attribute 'x' is not a finite number");
-  std::string two = curve_set("<control_points_set><control_point x=\"1\" y=\"2\"/>"
-                              "<control_point x=\"3\" y=\"4\"/></control_points_set>" +
-                              kColours);
+  std::string two = curve_set(
+      "<control_points_set><control_point x=\"1\" y=\"2\"/>"
+      "<control_point x=\"3\" y=\"4\"/></control_points_set>" +
+      kColours);
   two.replace(two.find("nb_control_points=\"4\""), 21, "nb_control_points=\"2\"");
   fails(two, "2 control points");
   std::string zero = curve_set(kPoints + kColours);

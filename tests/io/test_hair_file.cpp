@@ -1,4 +1,6 @@
 // Cem Yuksel's .hair format, our JSON strands, and hair files as scene guides.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -14,7 +16,8 @@ using Eigen::Vector3d;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / "wisp_test_hair_file";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wisp_test_hair_file_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }

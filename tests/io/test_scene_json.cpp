@@ -1,4 +1,6 @@
 // Scene JSON: defaults, every part parsed, unknown fields with suggestions, bad values named.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -84,7 +86,8 @@ TEST_CASE("bad values are errors naming the field", "[io][scene]") {
 }
 
 TEST_CASE("NaN in keyframes and malformed JSON are clear errors", "[io][scene]") {
-  const auto dir = std::filesystem::temp_directory_path() / "wisp_test_scene_json";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wisp_test_scene_json_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto write = [&](const char* name, const char* text) {
     std::ofstream(dir / name) << text;
@@ -107,4 +110,117 @@ TEST_CASE("NaN in keyframes and malformed JSON are clear errors", "[io][scene]")
   CHECK_THROWS_WITH(wisp::io::load_sim_setup(s),
                     Catch::Contains("head.mesh") && Catch::Contains("nothere.obj"));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]") {
+  const wisp::io::Scene d = parse_scene(json::object(), "scene.json");
+  const wisp::vector::HairStyle style_defaults;
+  CHECK(d.style.geometry.width == style_defaults.geometry.width);
+  CHECK(d.style.hair == style_defaults.hair);
+  CHECK(d.light_dir.isApprox(wisp::sim::default_light_dir()));
+  CHECK(d.light_dir.norm() == Approx(1));
+  CHECK(d.render.body);
+  CHECK(d.render.torso);
+  CHECK(d.render.solver_tolerance == 1e-4);
+  CHECK(d.render.warm_start_block == 8);
+  CHECK(d.render.video);
+  CHECK(d.render.contact_sheet_columns == 6);
+
+  const json doc = json::parse(R"({
+    "style": {"width": 0.02, "profile": "sine", "curvature_clamp": 0.5,
+              "hair_color": [0.9, 0.8, 0.1], "shadow_color": [0, 0, 0],
+              "highlight_color": [1, 1, 1], "highlight_along": 0.6, "highlight_spread": 0.1,
+              "highlight_side": "right"},
+    "light": {"direction": [0, 3, 4]},
+    "render": {"background_color": [1, 1, 1], "skin_color": [0.5, 0.4, 0.3], "body": false,
+               "torso": false, "solver_tolerance": 1e-3, "warm_start_block": 3, "video": false,
+               "contact_sheet_columns": 4}
+  })");
+  const wisp::io::Scene s = parse_scene(doc, "scene.json");
+  CHECK(s.style.geometry.width == 0.02);
+  CHECK(s.style.geometry.profile.shape == wisp::vector::WidthProfile::Shape::Shin);
+  CHECK(s.style.geometry.curvature_clamp == 0.5);
+  CHECK(s.style.hair == Eigen::Vector3f(0.9f, 0.8f, 0.1f));
+  CHECK(s.style.shadow == Eigen::Vector3f::Zero());
+  CHECK(s.style.highlight == Eigen::Vector3f::Ones());
+  CHECK(s.style.highlight_along == 0.6);
+  CHECK(s.style.highlight_spread == 0.1);
+  CHECK(!s.style.highlight_on_left);
+  CHECK(s.light_dir.isApprox(Eigen::Vector3d(0, 0.6, 0.8)));
+  CHECK(s.render.background_color == Eigen::Vector3f::Ones());
+  CHECK(s.render.skin_color == Eigen::Vector3f(0.5f, 0.4f, 0.3f));
+  CHECK(!s.render.body);
+  CHECK(!s.render.torso);
+  CHECK(s.render.solver_tolerance == 1e-3);
+  CHECK(s.render.warm_start_block == 3);
+  CHECK(!s.render.video);
+  CHECK(s.render.contact_sheet_columns == 4);
+
+  // "taper" is Faraj's pointy wisp; null turns the curvature clamp off.
+  const wisp::io::Scene t = parse_scene(
+      json::parse(R"({"style": {"profile": "taper", "curvature_clamp": null}})"), "scene.json");
+  CHECK(t.style.geometry.profile.shape == wisp::vector::WidthProfile::Shape::Linear);
+  CHECK(t.style.geometry.profile.at(1.0) == 0.0);
+  CHECK(std::isinf(t.style.geometry.curvature_clamp));
+}
+
+TEST_CASE("the scene's body and projector options follow render.body and render.torso",
+          "[io][scene]") {
+  wisp::io::Scene s = parse_scene(json::parse(R"({"head": {"shoulder_radius": 0.05},
+                                                  "light": {"direction": [1, 0, 0]}})"),
+                                  "scene.json");
+  wisp::sim::BodyParams b = wisp::io::body_params(s);
+  CHECK((b.head && b.neck && b.torso));
+  CHECK(b.shoulders.radius == 0.05);  // the collision capsule
+  wisp::sim::ProjectorOptions o = wisp::io::projector_options(s);
+  CHECK(o.light_dir == Eigen::Vector3d::UnitX());
+  REQUIRE(o.body);
+  CHECK(o.body->torso);
+  s.render.torso = false;
+  b = wisp::io::body_params(s);
+  CHECK((b.head && !b.neck && !b.torso));
+  CHECK(!wisp::io::projector_options(s).body);
+  s.render.body = false;
+  b = wisp::io::body_params(s);
+  CHECK((!b.head && !b.neck && !b.torso));
+}
+
+TEST_CASE("bad style, light and render values name the field", "[io][scene]") {
+  CHECK(error_of({{"style", {{"widht", 0.01}}}}) ==
+        "scene.json: style.widht: unknown field (did you mean \"width\"?)");
+  CHECK(error_of({{"style", {{"profile", "sin"}}}}) ==
+        "scene.json: style.profile: expected one of taper, sine, got \"sin\" (did you mean "
+        "\"sine\"?)");
+  CHECK(error_of({{"style", {{"width", 0}}}}).find("scene.json: style.width: must be") == 0);
+  CHECK(error_of({{"style", {{"curvature_clamp", -1}}}}).find("style.curvature_clamp") !=
+        std::string::npos);
+  CHECK(error_of({{"style", {{"hair_color", {1.5, 0, 0}}}}}) ==
+        "scene.json: style.hair_color: colour components must be in [0, 1], got [1.5,0,0]");
+  CHECK(error_of({{"style", {{"shadow_color", {0, 0}}}}})
+            .find("style.shadow_color: expected an "
+                  "array of 3 numbers") != std::string::npos);
+  CHECK(error_of({{"style", {{"highlight_along", 2}}}}).find("style.highlight_along") !=
+        std::string::npos);
+  CHECK(error_of({{"style", {{"highlight_spread", 0}}}}).find("style.highlight_spread") !=
+        std::string::npos);
+  CHECK(error_of({{"style", {{"highlight_side", "up"}}}}).find("style.highlight_side") !=
+        std::string::npos);
+  CHECK(error_of({{"style", {{"highlight_along", 2}}}}).find("style.highlight_along") !=
+        std::string::npos);
+  CHECK(error_of({{"light", {{"direction", {0, 0, 0}}}}}) ==
+        "scene.json: light.direction: must be a non-zero vector");
+  CHECK(error_of({{"light", {{"directoin", {0, 0, 1}}}}}) ==
+        "scene.json: light.directoin: unknown field (did you mean \"direction\"?)");
+  CHECK(error_of({{"render", {{"video", 1}}}}) ==
+        "scene.json: render.video: expected true or false, got 1");
+  CHECK(error_of({{"render", {{"solver_tolerance", 0}}}}).find("render.solver_tolerance") !=
+        std::string::npos);
+  CHECK(error_of({{"render", {{"warm_start_block", 0}}}}).find("render.warm_start_block") !=
+        std::string::npos);
+  CHECK(
+      error_of({{"render", {{"contact_sheet_columns", 0}}}}).find("render.contact_sheet_columns") !=
+      std::string::npos);
+  CHECK(error_of({{"render", {{"skin_colour", {1, 1, 1}}}}}) ==
+        "scene.json: render.skin_colour: unknown field (did you mean \"skin_color\"?)");
+  CHECK(error_of({{"sim", {{"preroll", -1}}}}).find("sim.preroll") != std::string::npos);
 }

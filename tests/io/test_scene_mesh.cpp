@@ -1,4 +1,6 @@
 // The OBJ reader for head meshes, and a mesh head used by the simulation.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -11,7 +13,8 @@
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / "wisp_test_scene_mesh";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wisp_test_scene_mesh_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }

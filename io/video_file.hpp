@@ -1,0 +1,24 @@
+// The MP4 preview: PNG frames, in order, through OpenCV's VideoWriter (Debian's OpenCV encodes
+// through ffmpeg). H.264 (fourcc "avc1", libx264) is tried first, MPEG-4 part 2 ("mp4v") if that
+// fails; a codec counts as working only when the finished file decodes back to every frame. The
+// file is written atomically (io/atomic_file.hpp): the temporary keeps the .mp4 extension, from
+// which OpenCV picks the container. Same frames, same bytes (x264 is deterministic).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wisp::io {
+
+// Writes `frames` (image files OpenCV reads, all of the same size) at `fps` frames per second.
+// Returns the fourcc that worked ("avc1" or "mp4v"). Throws std::runtime_error naming the file:
+// no frames, a frame that cannot be read or differs in size, a path not ending in .mp4, fps not
+// in (0, 1000], or no codec that writes a decodable file.
+std::string write_video(const std::filesystem::path& path,
+                        const std::vector<std::filesystem::path>& frames, double fps);
+
+// Decodes the whole video and counts its frames; -1 if it cannot be opened.
+int count_video_frames(const std::filesystem::path& path);
+
+}  // namespace wisp::io
