@@ -18,14 +18,17 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Until the render pipeline lands, the demo renders the sample drawings.
+# The main job on the default scene (simulate, render every frame, video, contact sheet), plus
+# the diffusion-curve drawings of data/drawings/.
 demo: build
-	@mkdir -p out/demo
+	$(BUILD)/bin/wisp render data/scenes/default.json -o out/demo
+	@mkdir -p out/demo/drawings
 	@for f in data/drawings/*.xml data/drawings/external/*.xml; do \
 	  n=$$(basename $$f .xml); \
-	  $(BUILD)/bin/wisp diffuse $$f -o out/demo/$$n.png --stats out/demo/$$n.json || exit 1; \
+	  $(BUILD)/bin/wisp diffuse $$f -o out/demo/drawings/$$n.png || exit 1; \
 	done
-	@echo "demo: images written to $(CURDIR)/out/demo/"
+	@echo "demo: frames, preview.mp4, contact.png and stats.json in $(CURDIR)/out/demo/"
+	@echo "demo: diffusion-curve drawings in $(CURDIR)/out/demo/drawings/"
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
       {"solver", wisp::bench::run_solver},
       {"arrangement", wisp::bench::run_arrangement},
       {"sim", wisp::bench::run_sim},
+      {"render", wisp::bench::run_render},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");
