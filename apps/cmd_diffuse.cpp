@@ -106,11 +106,7 @@ void run_diffuse(const DiffuseArgs& a) {
                    {"converged", st.solver.converged},
                    {"floating_pixels", st.solver.floating_pixels}};
     j["blurred"] = st.blurred;
-    io::write_atomically(a.stats, [&](const std::filesystem::path& tmp) {
-      std::ofstream out(tmp);
-      out << j.dump(2) << "\n";
-      if (!out.flush()) throw std::runtime_error(a.stats + ": write failed");
-    });
+    io::write_text_atomically(a.stats, j.dump(2) + "\n");
   }
 }
 

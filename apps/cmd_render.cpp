@@ -258,11 +258,7 @@ void run_render(const RenderArgs& a) {
       {"stage_ms_median", medians},
       {"stage_ms_total", totals},
       {"frames", per_frame}};
-  io::write_atomically(out / "stats.json", [&](const fs::path& tmp) {
-    std::ofstream f(tmp);
-    f << stats.dump(2) << "\n";
-    if (!f.flush()) throw std::runtime_error((out / "stats.json").string() + ": write failed");
-  });
+  io::write_text_atomically(out / "stats.json", stats.dump(2) + "\n");
   if (!a.quiet)
     std::fprintf(stderr, "render: %d frames written, %d already there; output in %s\n",
                  int(records.size()), (last - first) - int(records.size()),

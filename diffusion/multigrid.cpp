@@ -393,39 +393,53 @@ void Multigrid<NC>::solve_coarsest() {
   }
 }
 
+// The couplings of one row of a level to its 4 (5-point) or 8 (9-point) neighbours, and
+// sum_q a_pq e_q over them for every point of the row (vectorises: contiguous loads).
+struct RowCouplings {
+  const float *ae, *aw, *as, *an, *ase, *anw, *asw, *ane;
+  int stride;
+  bool nine_point;
+
+  RowCouplings(const Level& L, size_t row)
+      : ae(&L.ae[row]),
+        aw(&L.ae[row - 1]),
+        as(&L.as[row]),
+        an(&L.as[row - L.stride]),
+        ase(L.nine_point ? &L.ase[row] : nullptr),
+        anw(L.nine_point ? &L.ase[row - L.stride - 1] : nullptr),
+        asw(L.nine_point ? &L.asw[row] : nullptr),
+        ane(L.nine_point ? &L.asw[row - L.stride + 1] : nullptr),
+        stride(L.stride),
+        nine_point(L.nine_point) {}
+
+  void neighbour_sum(const float* __restrict e, float* __restrict out, int w) const {
+    const int s = stride;
+    const float *__restrict pe = ae, *__restrict pw = aw, *__restrict ps = as, *__restrict pn = an;
+    for (int x = 0; x < w; ++x)
+      out[x] = pe[x] * e[x + 1] + pw[x] * e[x - 1] + ps[x] * e[x + s] + pn[x] * e[x - s];
+    if (!nine_point) return;
+    const float *__restrict pse = ase, *__restrict pnw = anw, *__restrict psw = asw,
+                              *__restrict pne = ane;
+    for (int x = 0; x < w; ++x)
+      out[x] += pse[x] * e[x + s + 1] + pnw[x] * e[x - s - 1] + psw[x] * e[x + s - 1] +
+                pne[x] * e[x - s + 1];
+  }
+};
+
 // Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
 // equation asks given its neighbours. The whole row is computed into `buf` (contiguous, so it
 // vectorises) and the points of that parity are kept.
 template <int NC>
 void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict buf) {
-  const size_t n = L.padded();
-  const int s = L.stride, w = L.w;
-  const size_t row = L.at(0, y);
+  const size_t n = L.padded(), row = L.at(0, y);
+  const RowCouplings a(L, row);
   const float* __restrict id = &L.inv_diag[row];
-  const float* __restrict ae = &L.ae[row];
-  const float* __restrict aw = &L.ae[row - 1];
-  const float* __restrict as = &L.as[row];
-  const float* __restrict an = &L.as[row - s];
   for (int c = 0; c < NC; ++c) {
     float* __restrict e = &L.e[c * n + row];
     const float* __restrict b = &L.rhs[c * n + row];
-    if (!L.nine_point) {
-      for (int x = 0; x < w; ++x)
-        buf[x] =
-            (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] + an[x] * e[x - s]) *
-            id[x];
-    } else {
-      const float* __restrict ase = &L.ase[row];
-      const float* __restrict anw = &L.ase[row - s - 1];
-      const float* __restrict asw = &L.asw[row];
-      const float* __restrict ane = &L.asw[row - s + 1];
-      for (int x = 0; x < w; ++x)
-        buf[x] = (b[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] + an[x] * e[x - s] +
-                  ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] + asw[x] * e[x + s - 1] +
-                  ane[x] * e[x - s + 1]) *
-                 id[x];
-    }
-    for (int x = x_parity; x < w; x += 2) e[x] = buf[x];
+    a.neighbour_sum(e, buf, L.w);
+    for (int x = 0; x < L.w; ++x) buf[x] = (b[x] + buf[x]) * id[x];
+    for (int x = x_parity; x < L.w; x += 2) e[x] = buf[x];
   }
 }
 
@@ -492,33 +506,21 @@ void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
                                 std::vector<double>* row_norms) {
   Level& L = levels_[l];
   const size_t n = L.padded();
-  const int s = L.stride, w = L.w;
+  const int w = L.w;
   for_rows(L.h, w * NC, [&](int y0, int y1) {
-    std::vector<float> zeros(b_planes ? 0 : static_cast<size_t>(w), 0.0f);
     for (int y = y0; y < y1; ++y) {
       const size_t row = L.at(0, y);
+      const RowCouplings a(L, row);
       const float* __restrict d = &L.diag[row];
-      const float* __restrict ae = &L.ae[row];
-      const float* __restrict aw = &L.ae[row - 1];
-      const float* __restrict as = &L.as[row];
-      const float* __restrict an = &L.as[row - s];
       for (int c = 0; c < NC; ++c) {
         const float* __restrict e = &e_planes[c * n + row];
-        const float* __restrict b = b_planes ? &(*b_planes)[c * n + row] : zeros.data();
         float* __restrict r = &out[c * n + row];
-        if (!L.nine_point) {
-          for (int x = 0; x < w; ++x)
-            r[x] = b[x] - d[x] * e[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
-                   an[x] * e[x - s];
+        a.neighbour_sum(e, r, w);
+        if (b_planes) {
+          const float* __restrict b = &(*b_planes)[c * n + row];
+          for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
         } else {
-          const float* __restrict ase = &L.ase[row];
-          const float* __restrict anw = &L.ase[row - s - 1];
-          const float* __restrict asw = &L.asw[row];
-          const float* __restrict ane = &L.asw[row - s + 1];
-          for (int x = 0; x < w; ++x)
-            r[x] = b[x] - d[x] * e[x] + ae[x] * e[x + 1] + aw[x] * e[x - 1] + as[x] * e[x + s] +
-                   an[x] * e[x - s] + ase[x] * e[x + s + 1] + anw[x] * e[x - s - 1] +
-                   asw[x] * e[x + s - 1] + ane[x] * e[x - s + 1];
+          for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
         }
         if (row_norms) {  // while the row is in cache
           float sum = 0;

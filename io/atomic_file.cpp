@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -33,6 +34,14 @@ void write_atomically(const std::filesystem::path& path,
     fs::remove(tmp, ec);
     throw std::runtime_error(path.string() + ": cannot move the finished file into place");
   }
+}
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error(path.string() + ": write failed");
+  });
 }
 
 }  // namespace wisp::io

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 
 namespace wisp::io {
 
@@ -14,5 +15,8 @@ namespace wisp::io {
 // when the folder is not writable or the rename fails.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& tmp)>& write);
+
+// Writes `text` to `path` atomically (the same rules).
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace wisp::io

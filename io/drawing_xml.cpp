@@ -308,11 +308,7 @@ std::string format_drawing_xml(const diffusion::Drawing& d, XmlDialect dialect) 
 void write_drawing_xml(const diffusion::Drawing& drawing, const std::filesystem::path& path,
                        XmlDialect dialect) {
   const std::string text = format_drawing_xml(drawing, dialect);
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(path.string() + ": write failed");
-  });
+  write_text_atomically(path, text);
 }
 
 }  // namespace wisp::io
