@@ -100,7 +100,8 @@ class Multigrid {
   double conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
                             SolveStats& st);
   void setup();
-  std::array<double, NC> residual_double(const std::vector<double>& u, std::vector<float>& r_padded,
+  template <class T>
+  std::array<double, NC> residual_double(const std::vector<T>& u, std::vector<float>& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
   double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
   void observe(const std::vector<float>& residual_padded, const SolveStats& st) const;
@@ -759,7 +760,8 @@ void Multigrid<NC>::setup() {
 // receives r in the levels' float layout. Returns the per-channel norms of r and, in b_norms,
 // those of b.
 template <int NC>
-std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<double>& u,
+template <class T>
+std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
                                                       std::vector<float>& r_padded,
                                                       std::array<double, NC>* b_norms) const {
   const Problem& p = problem_;
@@ -777,7 +779,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<double>&
             (p.links[i] & kOpenSouth) != 0, y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
         const size_t nb[4] = {i + 1, i - 1, i + p.width, i - p.width};
         for (int c = 0; c < NC; ++c) {
-          const double* uc = &u[c * np];
+          const T* uc = &u[c * np];
           double b = p.rhs.empty() ? 0.0 : -double(p.rhs[c * np + i]);
           double au = 0;
           for (int q = 0; q < 4; ++q)
@@ -864,38 +866,65 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
   st.levels = int(levels_.size());
 
   // u: fixed values on fixed pixels, the guess (or 0) on free ones; unreachable pixels are 0.
+  // In double precision only when the tolerance is below what float32 reaches (refinement).
+  const bool refine = options_.tolerance < 2e-6;
   const size_t np = p.pixel_count();
-  std::vector<double> u(np * NC, 0.0);
-  for (int c = 0; c < NC; ++c)
-    for (size_t i = 0; i < np; ++i)
-      u[c * np + i] =
-          p.fixed[i] ? p.value[c * np + i] : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
+  const auto initial = [&](auto& u) {
+    u.resize(np * NC);
+    for_rows(p.height, p.width * NC, [&](int y0, int y1) {
+      for (int c = 0; c < NC; ++c)
+        for (size_t i = p.index(0, y0); i < p.index(0, y1); ++i)
+          u[c * np + i] = p.fixed[i] ? p.value[c * np + i]
+                                     : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
+    });
+  };
+  // u += the correction solved on the finest level.
+  const auto add_correction = [&](auto& u) {
+    const Level& F = levels_[0];
+    const size_t nf = F.padded();
+    for_rows(p.height, p.width * NC, [&](int y0, int y1) {
+      for (int c = 0; c < NC; ++c)
+        for (int y = y0; y < y1; ++y)
+          for (int x = 0; x < p.width; ++x) u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
+    });
+  };
+  std::vector<float> u32, r;
+  std::vector<double> u64;
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
-  std::vector<float> r;
   b_norm_.fill(0.0);
-  const std::array<double, NC> r_norms = residual_double(u, r, &b_norm_);
-  double rel = relative(r_norms);
+  double rel;
+  if (refine) {
+    initial(u64);
+    rel = relative(residual_double(u64, r, &b_norm_));
+  } else {
+    initial(u32);
+    rel = relative(residual_double(u32, r, &b_norm_));
+  }
   st.initial_residual = rel;
   st.setup_ms = ms_since(t_setup);
 
-  // Mixed precision: the float32 solve reaches a relative residual of about 1e-6. When a tighter
-  // tolerance is asked for, the residual of the double-precision answer is solved for again
-  // (iterative refinement); each round gains about five digits.
   const auto t_solve = Clock::now();
-  const Level& F = levels_[0];
-  const size_t nf = F.padded();
-  for (int round = 0; round < 3 && rel > options_.tolerance; ++round) {
-    solve_correction(r, options_.tolerance, st);
-    for (int c = 0; c < NC; ++c)
-      for (int y = 0; y < p.height; ++y)
-        for (int x = 0; x < p.width; ++x) u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
-    const double prev = rel;
-    rel = relative(residual_double(u, r));
-    if (rel > 0.5 * prev) break;
+  if (!refine) {
+    if (rel > options_.tolerance) {
+      rel = solve_correction(r, options_.tolerance, st);
+      add_correction(u32);
+    }
+  } else {
+    // Mixed precision: the float32 solve reaches a relative residual of about 1e-6. For a
+    // tighter tolerance the residual of the double-precision answer is solved for again
+    // (iterative refinement); each round gains about five digits.
+    for (int round = 0; round < 3 && rel > options_.tolerance; ++round) {
+      solve_correction(r, options_.tolerance, st);
+      add_correction(u64);
+      const double prev = rel;
+      rel = relative(residual_double(u64, r));
+      if (rel > 0.5 * prev) break;
+    }
+    u32.assign(u64.begin(), u64.end());
   }
   st.final_residual = rel;
   st.converged = rel <= options_.tolerance;
-  out.planes.assign(u.begin(), u.end());
+  out.planes = std::move(u32);
   st.solve_ms = ms_since(t_solve);
   return out;
 }
