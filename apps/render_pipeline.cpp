@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "diffusion/rasterize.hpp"
+#include "vector/bezier.hpp"
 #include "vector/hair_curves.hpp"
 
 namespace wisp::apps {
@@ -40,6 +41,30 @@ std::vector<io::FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
   return out;
 }
 
+// A fitted ink curve as a picture stroke; its flattening (for tools that draw polylines) at the
+// cubics' ends and thirds.
+io::InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
+  io::InkStroke s;
+  s.color = style.color;
+  s.closed = c.closed;
+  s.curve = c.points;
+  s.curve_width = c.width;
+  const int k = int(c.points.size() - 1) / 3;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double u = j / 3.0, sp = (i + u) / k;
+      const vector::Cubic q{c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2],
+                            c.points[3 * i + 3]};
+      s.points.push_back(vector::eval(q, u));
+      s.width.push_back(vector::width_at(c.width, sp));
+    }
+  if (!c.closed) {
+    s.points.push_back(c.points.back());
+    s.width.push_back(vector::width_at(c.width, 1.0));
+  }
+  return s;
+}
+
 }  // namespace
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyPolygon> body,
@@ -58,13 +83,17 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyP
   t0 = Clock::now();
   vector::ArrangementOptions arr;
   arr.view = vector::image_rect(W, H);
-  arr.debug_view = setup.debug_view || setup.flat_regions;
+  // Curves inside wisps are clipped to the arrangement's faces.
+  arr.debug_view =
+      setup.debug_view || setup.flat_regions || vector::needs_visible_regions(setup.style);
   arr.occluders = std::move(occluders);
   r.arrangement = vector::build_arrangement(r.wisps, arr);
   r.time.arrangement = ms_since(t0);
 
   t0 = Clock::now();
-  r.curves = vector::hair_curves(r.wisps, r.arrangement.visible, setup.style);
+  vector::HairCurves hc = vector::shade_hair(frame, r.wisps, r.arrangement, setup.style);
+  r.curves = std::move(hc.curves);
+  r.curve_stats = hc.stats;
   r.time.curves = ms_since(t0);
 
   io::FramePicture& pic = r.picture;
@@ -75,6 +104,12 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyP
   pic.mask = r.arrangement.mask;
   for (const vector::Wisp& w : r.wisps) pic.outlines.push_back(w.outline.points);
   if (setup.flat_regions) pic.flat = flat_regions(r.wisps, r.arrangement.view, setup.style);
+  if (setup.style.ink.enabled()) {
+    t0 = Clock::now();
+    r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);
+    for (const vector::InkCurve& c : r.ink) pic.ink.push_back(ink_stroke(c, setup.style.ink));
+    r.time.ink = ms_since(t0);
+  }
 
   if (!r.curves.empty()) {
     t0 = Clock::now();

@@ -1,7 +1,9 @@
 // One frame of the main job, from projected strands to a finished picture:
 //   wisps (vector/) -> arrangement: visibility, hair mask (vector/, CGAL) -> diffusion curves
-//   of the visible outline pieces (vector/hair_curves) -> rasterize + multigrid solve
-//   (diffusion/, warm-started from the previous frame) -> layers of an io::FramePicture.
+//   in the style: the visible outline pieces, lit by the frame's light, and curves inside the
+//   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
+//   (diffusion/, warm-started from the previous frame) -> layers of an io::FramePicture, with
+//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes).
 // Used by `wisp render` for every frame and by the inspector for the one it shows.
 #pragma once
 
@@ -11,7 +13,9 @@
 #include "io/frame.hpp"
 #include "sim/projected.hpp"
 #include "vector/arrangement.hpp"
+#include "vector/hair_curves.hpp"
 #include "vector/hair_style.hpp"
+#include "vector/ink_strokes.hpp"
 
 namespace wisp::apps {
 
@@ -26,14 +30,17 @@ struct FrameSetup {
 // Milliseconds per stage.
 struct FrameTimings {
   double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
+  double ink = 0;  // fitting the ink strokes
 };
 
 struct FrameResult {
   io::FramePicture picture;
   std::vector<vector::Wisp> wisps;
   vector::WispArrangement arrangement;
-  std::vector<diffusion::DiffusionCurve> curves;
-  diffusion::Problem problem;  // the rasterized constraints (inspector)
+  std::vector<diffusion::DiffusionCurve> curves;  // outlines first, then curves inside wisps
+  vector::HairCurveStats curve_stats;             // how many of each kind
+  std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
+  diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
   std::vector<float> solution;  // the solved RGB planes: the next frame's warm start
   FrameTimings time;

@@ -8,6 +8,7 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "diffusion/render.hpp"
@@ -28,7 +29,26 @@ struct InkStroke {
   std::vector<double> width;
   Rgb color = Rgb::Zero();
   bool closed = false;
+  // The stroke as a cubic Bezier path (3k+1 control points, parameter s uniform over the cubics)
+  // with its full width as (s, px) stops, linear in between. When set, PNG and SVG draw this
+  // (see ink_pieces) and `points`/`width` are its flattening, for tools that want polylines.
+  std::vector<Eigen::Vector2d> curve;
+  std::vector<std::pair<double, double>> curve_width;
 };
+
+// A variable-width Bezier stroke as constant-width stroked paths, drawn the same way in the PNG
+// (Cairo) and the SVG (one <path> with stroke-width each; rsvg is Cairo, browsers stroke alike):
+// the cubics are split (de Casteljau, exact geometry) wherever the width, rounded to a multiple
+// of `step` px, changes, and consecutive pieces of the same rounded width form one path, stroked
+// with round caps and joins. Widths are thus within step/2 of the exact profile; pieces rounding
+// to 0 are left out. A filled outline of offset curves would follow the width exactly but needs
+// offset approximations that fold on tight bends; stroking keeps every path a real stroke that
+// editors understand.
+struct InkPiece {
+  std::vector<Eigen::Vector2d> points;  // 3k+1 control points
+  double width = 0;
+};
+std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step = 0.25);
 
 // A region of one wisp for flat SVGs: its visible area, filled with a linear gradient along the
 // wisp from root to tip.

@@ -116,7 +116,23 @@ Surface draw(const FramePicture& pic) {
     cairo_restore(c);
   }
   cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
+  cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
   for (const InkStroke& ink : pic.ink) {
+    if (!ink.curve.empty()) {
+      set_rgb(c, ink.color);
+      for (const InkPiece& piece : ink_pieces(ink)) {
+        cairo_new_path(c);
+        const auto& q = piece.points;
+        cairo_move_to(c, q[0].x(), q[0].y());
+        for (size_t i = 1; i + 2 < q.size(); i += 3)
+          cairo_curve_to(c, q[i].x(), q[i].y(), q[i + 1].x(), q[i + 1].y(), q[i + 2].x(),
+                         q[i + 2].y());
+        cairo_set_line_width(c, piece.width);
+        cairo_stroke(c);
+      }
+      continue;
+    }
     if (ink.points.size() < 2 || ink.width.size() != ink.points.size()) continue;
     cairo_new_path(c);
     ink_path(c, ink);

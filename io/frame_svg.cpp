@@ -159,21 +159,31 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
         << num(pts[i + 1].y()) << ' ' << num(pts[i + 2].x()) << ' ' << num(pts[i + 2].y());
     o << "\"/>\n";
   }
-  o << " </g>\n <g id=\"ink\">\n";
-  for (const InkStroke& ink : pic.ink)
-    if (ink.points.size() >= 2 && ink.width.size() == ink.points.size())
-      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color) << "\"/>\n";
+  o << " </g>\n <g id=\"ink\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  for (const InkStroke& ink : pic.ink) {
+    if (!ink.curve.empty()) {
+      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
+      const std::string color = hex(ink.color);
+      for (const InkPiece& piece : ink_pieces(ink)) {
+        const auto& q = piece.points;
+        o << "  <path d=\"M" << num(q[0].x()) << ' ' << num(q[0].y());
+        for (size_t i = 1; i + 2 < q.size(); i += 3)
+          o << " C" << num(q[i].x()) << ' ' << num(q[i].y()) << ' ' << num(q[i + 1].x()) << ' '
+            << num(q[i + 1].y()) << ' ' << num(q[i + 2].x()) << ' ' << num(q[i + 2].y());
+        o << "\" stroke=\"" << color << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
+      }
+    } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
+      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
+        << "\" stroke=\"none\"/>\n";
+    }
+  }
   o << " </g>\n</svg>\n";
   return o.str();
 }
 
 void write_frame_svg(const FramePicture& pic, const std::filesystem::path& path, SvgStyle style) {
   const std::string text = format_frame_svg(pic, style);
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(path.string() + ": write failed");
-  });
+  write_text_atomically(path, text);
 }
 
 }  // namespace wisp::io

@@ -1,7 +1,9 @@
 // Scene JSON reader: see scene.hpp. Each part is a small function over a field reader that
 // remembers which keys it consumed, so whatever is left over is an unknown field, reported with
 // the nearest known name when it looks like a typo.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/ramp_file.hpp"
 #include "io/scene.hpp"
 
 namespace wisp::io {
@@ -309,6 +312,152 @@ void parse_camera(Fields& f, Scene& s) {
   require(f, c.hysteresis >= 0, "hysteresis", "must be >= 0 (m)");
 }
 
+// Relative file names inside a style resolve from the folder of the file that names them.
+std::filesystem::path folder_of(const Fields& f) {
+  return std::filesystem::path(f.file()).parent_path();
+}
+
+void parse_shading(Fields& f, vector::HairStyle& st) {
+  vector::ShadingStyle& s = st.shading;
+  std::string model = s.model == vector::ShadingModel::Lit ? "lit" : "faraj";
+  f.choice("model", model, {"faraj", "lit"});
+  s.model = model == "lit" ? vector::ShadingModel::Lit : vector::ShadingModel::Faraj;
+  if (const json* r = f.find("ramp")) {
+    if (r->is_null()) {
+      s.ramp.reset();
+    } else {
+      if (!r->is_string() || r->get<std::string>().empty())
+        f.fail(f.name("ramp"), "expected an image file name or null, got " + r->dump());
+      const std::string file = r->get<std::string>();
+      const std::filesystem::path p = std::filesystem::path(file).is_absolute()
+                                          ? std::filesystem::path(file)
+                                          : folder_of(f) / file;
+      try {
+        s.ramp = read_ramp(p);
+      } catch (const std::exception& e) {
+        f.fail(f.name("ramp"), e.what());
+      }
+    }
+  }
+  static const std::vector<std::pair<std::string, vector::RampMetric>> metrics = {
+      {"none", vector::RampMetric::None},
+      {"depth", vector::RampMetric::Depth},
+      {"back_light", vector::RampMetric::BackLight},
+      {"specular", vector::RampMetric::Specular}};
+  std::string metric;
+  for (const auto& [name, m] : metrics)
+    if (m == s.metric) metric = name;
+  f.choice("ramp_metric", metric, {"none", "depth", "back_light", "specular"});
+  for (const auto& [name, m] : metrics)
+    if (name == metric) s.metric = m;
+  f.color("ramp_tint", s.ramp_tint);
+  f.get("hard_bands", s.hard_bands);
+  f.get("band_threshold", s.band_threshold);
+  require(f, s.band_threshold > 0 && s.band_threshold <= 1, "band_threshold",
+          "must be in (0, 1] (a colour difference)");
+  vector::Lighting& l = s.lighting;
+  for (auto [key, v] : {std::pair<const char*, double*>{"ambient", &l.ambient},
+                        {"kajiya_diffuse", &l.kajiya_diffuse},
+                        {"lambert", &l.lambert},
+                        {"specular", &l.specular}}) {
+    f.get(key, *v);
+    require(f, *v >= 0 && *v <= 10, key, "must be a weight in [0, 10]");
+  }
+  f.get("shininess", l.shininess);
+  require(f, l.shininess > 0 && l.shininess <= 10000, "shininess", "must be in (0, 10000]");
+  f.get("head_shadow", l.head_shadow);
+  require(f, l.head_shadow >= 0 && l.head_shadow <= 1, "head_shadow", "must be in [0, 1]");
+  f.get("head_offset", l.head_offset);
+  require(f, l.head_offset >= -1 && l.head_offset <= 1, "head_offset", "must be in [-1, 1]");
+  f.get("back_exponent", l.back_exponent);
+  require(f, l.back_exponent >= 0 && l.back_exponent <= 100, "back_exponent",
+          "must be in [0, 100]");
+  f.get("depth_near", s.depth_near);
+  require(f, s.depth_near >= 0, "depth_near", "must be >= 0 metres (0: the frame's nearest hair)");
+  f.get("depth_far", s.depth_far);
+  require(f, s.depth_far >= 0, "depth_far", "must be >= 0 metres (0: the frame's farthest hair)");
+  require(f, s.depth_near == 0 || s.depth_far == 0 || s.depth_far > s.depth_near, "depth_far",
+          "must be greater than depth_near");
+  f.get("metric_shininess", s.metric_shininess);
+  require(f, s.metric_shininess > 0 && s.metric_shininess <= 10000, "metric_shininess",
+          "must be in (0, 10000]");
+  f.get("centre_line", s.centre_line);
+  f.get("sample_px", s.sample_px);
+  require(f, s.sample_px >= 0.25 && s.sample_px <= 100, "sample_px",
+          "must be in [0.25, 100] pixels");
+}
+
+void parse_highlights(Fields& f, vector::HairStyle& st) {
+  vector::HighlightStyle& h = st.specular;
+  static const std::vector<std::pair<std::string, vector::HighlightShape>> shapes = {
+      {"none", vector::HighlightShape::None},
+      {"band", vector::HighlightShape::Band},
+      {"anime", vector::HighlightShape::Anime}};
+  std::string shape;
+  for (const auto& [name, v] : shapes)
+    if (v == h.shape) shape = name;
+  f.choice("shape", shape, {"none", "band", "anime"});
+  for (const auto& [name, v] : shapes)
+    if (name == shape) h.shape = v;
+  f.color("color", h.color);
+  f.get("threshold", h.threshold);
+  require(f, h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
+  f.get("shininess", h.shininess);
+  require(f, h.shininess > 0 && h.shininess <= 10000, "shininess", "must be in (0, 10000]");
+  f.get("shin_weight", h.shin_weight);
+  require(f, h.shin_weight >= 0 && h.shin_weight <= 1, "shin_weight", "must be in [0, 1]");
+  f.get("max_width", h.max_width);
+  require(f, h.max_width > 0 && h.max_width <= 1, "max_width",
+          "must be in (0, 1] (a fraction of the wisp's half-width)");
+  f.get("teeth", h.teeth);
+  require(f, h.teeth >= 1 && h.teeth <= 16, "teeth", "must be in [1, 16]");
+  f.get("link_distance", h.link_distance);
+  require(f, h.link_distance >= 0, "link_distance", "must be >= 0 pixels");
+  f.get("min_cluster", h.min_cluster);
+  require(f, h.min_cluster >= 1, "min_cluster", "must be at least 1");
+}
+
+void parse_ink(Fields& f, vector::HairStyle& st) {
+  vector::InkStyle& k = st.ink;
+  f.get("silhouette_width", k.silhouette_width);
+  require(f, k.silhouette_width >= 0 && k.silhouette_width <= 1000, "silhouette_width",
+          "must be a width in [0, 1000] pixels (0: no silhouette ink)");
+  f.get("occlusion_width", k.occlusion_width);
+  require(f, k.occlusion_width >= 0 && k.occlusion_width <= 1000, "occlusion_width",
+          "must be a width in [0, 1000] pixels (0: no occlusion ink)");
+  f.get("reference_size", k.reference_size);
+  require(f, k.reference_size >= 1 && k.reference_size <= 65536, "reference_size",
+          "must be in [1, 65536] pixels");
+  f.color("color", k.color);
+  f.get("root_fade", k.root_fade);
+  require(f, k.root_fade >= 0 && k.root_fade <= 1, "root_fade",
+          "must be in [0, 1] (a fraction of the strand; 0: no taper)");
+  f.get("root_width", k.root_width);
+  require(f, k.root_width >= 0 && k.root_width <= 1, "root_width",
+          "must be in [0, 1] (the width factor at the root)");
+  f.get("tip_fade", k.tip_fade);
+  require(f, k.tip_fade >= 0 && k.tip_fade <= 1, "tip_fade",
+          "must be in [0, 1] (a fraction of the strand; 0: no taper)");
+  f.get("tip_width", k.tip_width);
+  require(f, k.tip_width >= 0 && k.tip_width <= 1, "tip_width",
+          "must be in [0, 1] (the width factor at the tip)");
+  f.get("end_taper", k.end_taper);
+  require(f, k.end_taper >= 0, "end_taper", "must be >= 0 pixels");
+  f.get("fit_tolerance", k.fit_tolerance);
+  require(f, k.fit_tolerance > 0 && k.fit_tolerance <= 5, "fit_tolerance",
+          "must be in (0, 5] pixels");
+}
+
+// A nested object of the style, parsed by `parse` and checked for unknown keys.
+template <void (*parse)(Fields&, vector::HairStyle&)>
+void style_object(Fields& f, const char* k, vector::HairStyle& s) {
+  const json* v = f.find(k);
+  if (!v) return;
+  Fields g(*v, f.name(k), f.file());
+  parse(g, s);
+  g.finish();
+}
+
 // The `style` part, one entry per JSON field: presets and lighting fields join this table.
 using StyleField = std::function<void(Fields&, const char* key, vector::HairStyle&)>;
 
@@ -359,17 +508,92 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
          f.choice(k, side, {"left", "right"});
          s.highlight_on_left = side == "left";
        }},
+      {"shading", style_object<parse_shading>},
+      {"highlights", style_object<parse_highlights>},
+      {"ink", style_object<parse_ink>},
   };
   return table;
 }
 
-void parse_style(Fields& f, Scene& s) {
-  for (const auto& [key, read] : style_fields()) read(f, key, s.style);
+// Cross-field checks of a whole style; `f` names the object in messages.
+void check_style(Fields& f, const vector::HairStyle& st) {
   try {
-    vector::validate(s.style.geometry);
+    vector::validate(st.geometry);
   } catch (const std::invalid_argument& e) {
     f.fail("style", e.what());
   }
+  const vector::Lighting& l = st.shading.lighting;
+  if (st.shading.model == vector::ShadingModel::Lit &&
+      !(l.ambient + l.kajiya_diffuse + l.lambert > 0))
+    f.fail(f.name("shading"),
+           "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");
+}
+
+// The folder of data/ (presets and ramps): $WISP_DATA_DIR, or the source tree's data/ folder
+// (WISP_SOURCE_DATA_DIR, set by io/CMakeLists.txt).
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("WISP_DATA_DIR"); env && *env) return env;
+  return WISP_SOURCE_DATA_DIR;
+}
+
+// Names of the presets in data/styles.
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(data_dir() / "styles", ec))
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Reads a preset (a name in data/styles, or a .json file relative to the scene) into the style:
+// a JSON object with the style's fields (except `preset`) and an optional `description`.
+void apply_preset(Fields& f, const std::string& value, Scene& s) {
+  const std::string field = f.name("preset");
+  std::filesystem::path path;
+  if (value.size() > 5 && value.substr(value.size() - 5) == ".json") {
+    path = resolve(s.path, value);
+  } else {
+    const std::vector<std::string> names = preset_names();
+    if (std::find(names.begin(), names.end(), value) == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      f.fail(field, "expected one of " +
+                        (list.empty() ? "(no presets found in " + (data_dir() / "styles").string() +
+                                            "; set WISP_DATA_DIR)"
+                                      : list) +
+                        " or a .json file, got \"" + value + "\"" + Fields::suggest(value, names));
+    }
+    path = data_dir() / "styles" / (value + ".json");
+  }
+  std::ifstream in(path);
+  if (!in) f.fail(field, path.string() + ": cannot open the preset file");
+  json doc;
+  try {
+    doc = json::parse(in);
+  } catch (const json::exception& e) {
+    f.fail(field, path.string() + ": invalid JSON: " + e.what());
+  }
+  try {
+    Fields p(doc, "", path.string());
+    if (const json* d = p.find("description"))
+      if (!d->is_string()) p.fail("description", "expected a string");
+    for (const auto& [key, read] : style_fields()) read(p, key, s.style);
+    p.finish();
+  } catch (const std::invalid_argument& e) {
+    f.fail(field, e.what());
+  }
+}
+
+void parse_style(Fields& f, Scene& s) {
+  // A preset first, whatever the order of the keys: the scene's own fields override it.
+  if (const json* p = f.find("preset")) {
+    if (!p->is_string())
+      f.fail(f.name("preset"), "expected a preset name or a .json file, got " + p->dump());
+    apply_preset(f, p->get<std::string>(), s);
+  }
+  for (const auto& [key, read] : style_fields()) read(f, key, s.style);
+  check_style(f, s.style);
 }
 
 void parse_light(Fields& f, Scene& s) {

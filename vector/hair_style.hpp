@@ -1,15 +1,87 @@
-// How hair looks: wisp geometry plus the colours that become each wisp's diffusion curve. This is
-// Faraj's look (2009, section 3.2.2): the hair colour inside every wisp, a shadow colour
-// outside (so overlapping wisps shade each other), and one colour point, always on the same side
-// of every wisp, which makes the hair look lit by a fixed light. The scene's `style` part fills
-// it; the expressive styles (toon ramps, highlights, ink) extend it.
+// How hair looks: wisp geometry, the colours that become each wisp's diffusion curves, stylised
+// highlights and ink. The scene's `style` part fills it (io/scene_json.cpp), usually from a
+// preset in data/styles/ (docs/style.md).
+//
+// Two shading models:
+//  - Faraj (2009, section 3.2.2): the hair colour inside every wisp, a shadow colour outside (so
+//    overlapping wisps shade each other), and one colour point, always on the same side of every
+//    wisp, which makes the hair look lit by a fixed light. The `faraj` preset and the default.
+//  - Lit: the light of the frame on each wisp as a tube (vector/hair_shading.hpp), through a 2D
+//    toon ramp (X-Toon, vector/toon_ramp.hpp) or a blend from the shadow to the hair colour,
+//    written as colour stops along the outline, a centre line, and extra curves at the ramp's hard
+//    band edges; the shading follows the light as the head turns.
+// Highlights (Costigan's Blinn band or Shin's anime zigzags) are closed diffusion curves inside
+// their wisps, and ink strokes follow the arrangement's silhouette and occlusion lines.
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 
+#include "vector/hair_shading.hpp"
+#include "vector/toon_ramp.hpp"
 #include "vector/wisp.hpp"
 
 namespace wisp::vector {
+
+enum class ShadingModel { Faraj, Lit };
+
+struct ShadingStyle {
+  ShadingModel model = ShadingModel::Faraj;
+  // Lit: the ramp giving the colour at (intensity, metric); null blends from the shadow colour at
+  // intensity 0 to the hair colour at 1.
+  std::shared_ptr<const ToonRamp> ramp;
+  RampMetric metric = RampMetric::None;  // the ramp's y; None reads its middle row
+  Eigen::Vector3f ramp_tint{1, 1, 1};    // multiplies the ramp's colours (a grey ramp + a tint)
+  bool hard_bands = true;                // extra curves at the ramp's band edges
+  double band_threshold = 0.06;          // colour jump between ramp columns that makes an edge
+  Lighting lighting;
+  // Costigan's depth range in scene units; 0: the nearest and farthest hair of the frame.
+  double depth_near = 0, depth_far = 0;
+  double metric_shininess = 20;  // exponent of the Blinn term when the metric is Specular
+  bool centre_line = true;       // a curve along each wisp's centre carrying its colour there
+  double sample_px = 2;          // spacing of the shading samples along a wisp, pixels
+};
+
+enum class HighlightShape { None, Band, Anime };
+
+// Stylised highlights as closed diffusion curves: the highlight colour inside, an insulating
+// (Neumann) side outside, so the wisp's shading around them is undisturbed.
+struct HighlightStyle {
+  HighlightShape shape = HighlightShape::None;
+  Eigen::Vector3f color{1.0f, 0.95f, 0.85f};
+  // Band: the region where the tube's Blinn term (N.H)^shininess exceeds `threshold`.
+  // Anime: samples of the centre line where Shin's max(L.W, 0)^shininess exceeds `threshold`.
+  double threshold = 0.5;
+  double shininess = 40;
+  double shin_weight = 0.5;   // Shin's w: W = normalize(w N + (1 - w) T)
+  double max_width = 0.8;     // highlights stay within |u| <= this across the wisp
+  int teeth = 2;              // anime: zigzag teeth per wisp
+  double link_distance = 28;  // anime: px (at ink reference size) between linked neighbours
+  int min_cluster = 3;        // anime: fewer linked wisps than this draw no highlight
+};
+
+// Ink along the silhouette and occlusion boundaries (vector/ink_strokes.hpp).
+struct InkStyle {
+  // Stroke widths in pixels of an image whose shorter side is `reference_size` pixels; scaled by
+  // min(width, height) / reference_size, so strokes keep their size relative to the frame.
+  double silhouette_width = 0;  // 0: no silhouette ink
+  double occlusion_width = 0;   // 0: no occlusion ink
+  double reference_size = 512;
+  Eigen::Vector3f color{0.10f, 0.06f, 0.05f};
+  // Strokes narrow towards the roots (Costigan and Shin fade them there, where wisps pile up and
+  // their order jumps): width factor root_width at the root rising smoothly to 1 at strand
+  // parameter root_fade. root_fade 0: no taper.
+  double root_fade = 0.3;
+  double root_width = 0.3;
+  // Likewise towards the tips, over the last tip_fade of the strand, so thin tips do not end in
+  // blobs of ink.
+  double tip_fade = 0.15;
+  double tip_width = 0.35;
+  double end_taper = 6;         // px (reference): occlusion strokes taper to 0 at their open ends
+  double fit_tolerance = 0.15;  // px (final image): Bezier fit of the polylines
+
+  bool enabled() const { return silhouette_width > 0 || occlusion_width > 0; }
+};
 
 struct HairStyle {
   // A wisp stands for a clump of hair: about 2.8 cm wide at the root, so that some 150 guides
@@ -25,6 +97,9 @@ struct HairStyle {
   double highlight_along = 0.35;   // where the colour point sits along the wisp (0 root, 1 tip)
   double highlight_spread = 0.25;  // its extent along the wisp, as a fraction of the length
   bool highlight_on_left = true;   // which side of every wisp carries it
+  ShadingStyle shading;
+  HighlightStyle specular;
+  InkStyle ink;
 };
 
 }  // namespace wisp::vector

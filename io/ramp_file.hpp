@@ -1,0 +1,15 @@
+// Toon ramp images (vector/toon_ramp.hpp) read from PNG (or any image OpenCV reads) as RGB in
+// [0, 1], used as given, like every colour of a scene.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "vector/toon_ramp.hpp"
+
+namespace wisp::io {
+
+// Throws std::runtime_error naming the file when it cannot be read as an image or has no pixels.
+std::shared_ptr<const vector::ToonRamp> read_ramp(const std::filesystem::path& path);
+
+}  // namespace wisp::io
