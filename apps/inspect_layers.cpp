@@ -90,34 +90,54 @@ void paint_raster(cairo_t* cr, std::vector<std::uint32_t>& pixels, int width, in
   cairo_restore(cr);
 }
 
-void ring_path(cairo_t* cr, const std::vector<Vec2>& ring) {
-  if (ring.empty()) return;
-  cairo_move_to(cr, ring[0].x(), ring[0].y());
-  for (size_t i = 1; i < ring.size(); ++i) cairo_line_to(cr, ring[i].x(), ring[i].y());
-  cairo_close_path(cr);
+// Fills, in `pixels` (width x height, row-major), the pixels whose centre lies inside `rings`
+// (even-odd) with `value`. Exact centre sampling: Cairo's non-anti-aliased fill is not (it moves
+// sliver faces by up to half a pixel), and the faces layer promises one colour per face.
+void fill_centres(std::vector<std::uint32_t>& pixels, int width, int height,
+                  const std::vector<std::vector<Vec2>>& rings, std::uint32_t value) {
+  double y_min = height, y_max = 0;
+  for (const auto& r : rings)
+    for (const Vec2& p : r) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+  std::vector<double> xs;
+  for (int y = std::max(0, int(std::floor(y_min))); y < std::min(height, int(y_max) + 1); ++y) {
+    const double yc = y + 0.5;
+    xs.clear();
+    for (const auto& r : rings)
+      for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+        if ((r[i].y() > yc) != (r[j].y() > yc))
+          xs.push_back(r[j].x() + (yc - r[j].y()) * (r[i].x() - r[j].x()) / (r[i].y() - r[j].y()));
+    std::sort(xs.begin(), xs.end());
+    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+      // Pixels x with x + 0.5 in [xs[k], xs[k+1]).
+      const int x0 = std::max(0, int(std::ceil(xs[k] - 0.5)));
+      const int x1 = std::min(width, int(std::ceil(xs[k + 1] - 0.5)));
+      for (int x = x0; x < x1; ++x) pixels[size_t(y) * width + x] = value;
+    }
+  }
 }
 
 // Covered faces inside the view, each filled (centre-sampled, not anti-aliased) with color(face,
-// its number among those faces), in frame coordinates under the view.
+// its number among those faces), on the canvas under the view.
 template <class ColorOf>
 void paint_faces(cairo_t* cr, const vector::ArrangementView& view, const ViewTransform& t,
                  double opacity, ColorOf color) {
-  cairo_push_group(cr);
-  cairo_translate(cr, t.offset.x(), t.offset.y());
-  cairo_scale(cr, t.zoom, t.zoom);
-  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
-  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+  cairo_surface_t* target = cairo_get_target(cr);
+  const int width = cairo_image_surface_get_width(target);
+  const int height = cairo_image_surface_get_height(target);
+  std::vector<std::uint32_t> pixels(size_t(width) * height, 0);
+  std::vector<std::vector<Vec2>> rings;
   int number = 0;
   for (const vector::ViewFace& f : view.faces) {
     if (f.front < 0 || !f.in_view || f.outer.empty()) continue;
-    cairo_new_path(cr);
-    ring_path(cr, f.outer);
-    for (const auto& hole : f.holes) ring_path(cr, hole);
-    set_rgb(cr, color(f, number++));
-    cairo_fill(cr);
+    rings.assign(1, f.outer);
+    rings.insert(rings.end(), f.holes.begin(), f.holes.end());
+    for (auto& r : rings)
+      for (Vec2& p : r) p = t.to_canvas(p);
+    const Rgb8 c = color(f, number++);
+    fill_centres(pixels, width, height, rings,
+                 0xff000000u | std::uint32_t(c[0]) << 16 | std::uint32_t(c[1]) << 8 | c[2]);
   }
-  cairo_pop_group_to_source(cr);
-  cairo_paint_with_alpha(cr, opacity);
+  paint_raster(cr, pixels, width, height, ViewTransform{}, opacity);
 }
 
 // Line layers draw in canvas pixels: points go through the view, widths do not.
@@ -292,16 +312,24 @@ void draw_vertices(const Pen& pen, const InspectFrame& f) {
 void draw_ink(const Pen& pen, const InspectFrame& f) {
   cairo_t* cr = pen.cr;
   const io::FramePicture& pic = f.result.picture;
-  if (!pic.ink.empty()) {  // real strokes: their colours, widths scaled with the view
+  if (!pic.ink.empty()) {  // real strokes: as the PNG draws them, widths scaled with the view
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     for (const io::InkStroke& s : pic.ink) {
-      if (s.points.size() < 2) continue;
-      cairo_new_path(cr);
-      pen.polyline(s.points, s.closed);
-      double width = 0;
-      for (double w : s.width) width += w;
-      width = s.width.empty() ? 1.0 : width / s.width.size();
-      pen.stroke({to_byte(s.color[0]), to_byte(s.color[1]), to_byte(s.color[2])},
-                 std::max(1.0, width * pen.view.zoom));
+      const Rgb8 color{to_byte(s.color[0]), to_byte(s.color[1]), to_byte(s.color[2])};
+      for (const io::InkPiece& piece : io::ink_pieces(s)) {
+        cairo_new_path(cr);
+        pen.bezier(piece.points);
+        pen.stroke(color, std::max(1.0, piece.width * pen.view.zoom));
+      }
+      if (s.curve.empty() && s.points.size() >= 2) {  // a polyline stroke: its mean width
+        double width = 0;
+        for (double w : s.width) width += w;
+        width = s.width.empty() ? 1.0 : width / s.width.size();
+        cairo_new_path(cr);
+        pen.polyline(s.points, s.closed);
+        pen.stroke(color, std::max(1.0, width * pen.view.zoom));
+      }
     }
     return;
   }

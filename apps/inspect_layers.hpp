@@ -9,8 +9,9 @@
 // curves, intersection vertices, ink) are drawn on top, anti-aliased, with widths in screen
 // pixels, so they stay thin when zoomed in; vector fills are redrawn at the zoomed resolution,
 // pixel rasters (image, mask, constraints, residual) are magnified without smoothing, so single
-// pixels stay visible. At zoom 1 the fills of faces and coverage are not anti-aliased: a pixel
-// takes the colour of the face that contains its centre, which keeps colours exact.
+// pixels stay visible. The fills of faces and coverage are not anti-aliased: a canvas pixel
+// takes the colour of the face that contains its centre (sampled exactly, not by Cairo), which
+// keeps colours exact.
 #pragma once
 
 #include <Eigen/Core>
@@ -36,7 +37,7 @@ enum class Layer : int {
   Visibility,   // visible (green) and hidden (red) outline pieces
   Curves,       // centre curves with their Bezier control points
   Vertices,     // intersection vertices of the arrangement
-  Ink,          // ink strokes (the silhouette and occlusion lines until strokes exist)
+  Ink,          // ink strokes (the silhouette and occlusion lines when the style has none)
 };
 constexpr int kLayerCount = 11;
 

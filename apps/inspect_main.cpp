@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/cli_error.hpp"
 #include "apps/inspect_frame.hpp"
 #include "apps/inspect_layers.hpp"
 #include "apps/inspect_query.hpp"
@@ -46,6 +47,24 @@ void check_output(const std::string& option, const std::string& path, const std:
   if (!fs::is_directory(dir))
     throw std::invalid_argument(option + " " + path + ": the folder " + dir.string() +
                                 " does not exist");
+}
+
+// Qt aborts the process when it cannot reach the display, so look first: DISPLAY must be a
+// display name and, for a local display (":N"), its socket must exist.
+void check_display() {
+  if (const char* w = std::getenv("WAYLAND_DISPLAY"); w && *w) return;
+  const char* display = std::getenv("DISPLAY");
+  const std::string hint = "; use --snapshot, --dump or --pick to work without a window";
+  if (!display || !*display)
+    throw std::runtime_error("no display to open a window on (DISPLAY is not set)" + hint);
+  std::smatch m;
+  const std::string d = display;
+  if (!std::regex_match(d, m, std::regex(R"(([^:]*):(\d+)(\.\d+)?)")))
+    throw std::runtime_error("DISPLAY " + d + ": not a display name (expected [host]:N)" + hint);
+  const bool local = m[1].str().empty() || m[1].str() == "unix";
+  if (local && !fs::exists("/tmp/.X11-unix/X" + m[2].str()))
+    throw std::runtime_error("DISPLAY " + d + ": no X server listens there (no /tmp/.X11-unix/X" +
+                             m[2].str() + ")" + hint);
 }
 
 void write_png(const fs::path& path, const cv::Mat& img) {
@@ -91,6 +110,7 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
       initial_state(frame.index, source.frame_count(), frame.width(), frame.height(), area, layers);
   s.residual_steps = int(frame.residual.size());
   bool dirty = true, shown = false;
+  std::string said;  // the last message printed: drags and picks keep it, so print it once
   for (;;) {
     if (dirty) {
       cv::imshow(name, compose_window(frame, s, title));
@@ -102,6 +122,7 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
       shown = true;
     }
     if (cv::getWindowProperty(name, cv::WND_PROP_VISIBLE) < 1) break;  // closed by the user
+    if (key >= 0) said.clear();  // a key press says its message even when it repeats
     std::vector<Action> actions{handle_key(s, key)};
     for (const MouseEvent& m : std::vector<MouseEvent>(std::move(mouse)))
       actions.push_back(handle_mouse(s, m.event, m.x, m.y, m.flags));
@@ -132,7 +153,7 @@ void run_window(FrameSource& source, InspectFrame frame, const LayerSet& layers,
         case Action::Redraw:
           break;
       }
-      if (!s.message.empty()) say(s.message);
+      if (!s.message.empty() && s.message != said) say(said = s.message);
       dirty = true;
     }
   }
@@ -163,10 +184,7 @@ void run(const Args& a) {
   if (!a.snapshot.empty()) check_output("--snapshot", a.snapshot, ".png");
   if (!a.dump.empty()) check_output("--dump", a.dump, ".json");
   const bool headless = !a.snapshot.empty() || !a.dump.empty() || pick;
-  if (!headless && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-    throw std::runtime_error(
-        "no display to open a window on (DISPLAY is not set); use "
-        "--snapshot, --dump or --pick");
+  if (!headless) check_display();
 
   SceneFramesOptions options;
   options.anim = a.anim;
@@ -227,13 +245,19 @@ int main(int argc, char** argv) {
   app.add_option("--dump", a.dump, "Write the frame's arrangement to this JSON file, no window");
   app.add_option("--pick", a.pick, "Describe the point X,Y (frame pixels) on stdout, no window");
   app.add_option("--window", a.window, "Size WxH of the window's frame area (default: fit 800)");
+  app.add_flag_callback(
+      "--help-keys",
+      [] {
+        for (const std::string& l : wisp::apps::help_lines({})) std::printf("%s\n", l.c_str());
+        throw CLI::Success();
+      },
+      "Print the window's keys and mouse actions, and exit");
   app.add_flag("--no-opengl", a.no_opengl,
                "Plain window instead of OpenGL (its own wheel zoom then adds to ours)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return wisp::apps::report_parse_error(app, e, "wisp-inspect");
   }
   try {
     wisp::apps::run(a);

@@ -119,8 +119,11 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
       out.push_back(format("face %d: not covered%s%s", fi, face.unbounded ? ", unbounded" : "",
                            face.in_view ? "" : ", outside the view"));
     } else {
-      out.push_back(format("face %d: covered by %d wisp%s, front-most wisp %d%s", fi,
-                           int(face.cover.size()), face.cover.size() == 1 ? "" : "s", face.front,
+      // Covered by wisps but no front wisp: an occluder (head, body) is nearer than all of them.
+      const std::string front = face.front >= 0 ? format("front-most wisp %d", face.front)
+                                                : std::string("all behind the body (occluder)");
+      out.push_back(format("face %d: covered by %d wisp%s, %s%s", fi, int(face.cover.size()),
+                           face.cover.size() == 1 ? "" : "s", front.c_str(),
                            face.in_view ? "" : " (outside the view)"));
       for (const auto& [depth, w] : depth_order(f, face, p)) {
         int winding = 0;
@@ -205,6 +208,7 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
                      {"unbounded", face.unbounded},
                      {"in_view", face.in_view},
                      {"covered", face.front >= 0 && face.in_view},
+                     {"occluded", face.front < 0 && !face.cover.empty()},
                      {"outer", ring(face.outer)},
                      {"holes", std::move(holes)},
                      {"cover", std::move(cover)},

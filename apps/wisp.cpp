@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/cli_error.hpp"
 #include "apps/commands.hpp"
 
 int main(int argc, char** argv) {
@@ -14,8 +15,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return wisp::apps::report_parse_error(app, e, "wisp");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "wisp: error: %s\n", e.what());
     return 2;

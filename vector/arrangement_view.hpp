@@ -17,7 +17,7 @@ struct ViewFace {
   std::vector<Eigen::Vector2d> outer;               // empty for the unbounded face
   std::vector<std::vector<Eigen::Vector2d>> holes;  // inner boundaries
   std::vector<std::pair<int, int>> cover;           // (wisp, winding number), winding != 0
-  int front = -1;                // front-most wisp, -1 where nothing covers the face
+  int front = -1;  // front-most wisp; -1 where no wisp covers the face or an occluder is nearer
   double front_depth = 0;        // its depth at `sample`
   Eigen::Vector2d sample{0, 0};  // interior point where the depth order was decided
   bool in_view = false;          // inside the view frame (always true without clipping)

@@ -2,6 +2,10 @@
 #include "run_command.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <map>
 
 #include <array>
 #include <cstdio>
@@ -22,10 +26,25 @@ CommandResult run_command(const std::string& command) {
 }
 
 std::string fresh_folder(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("wisp_test_" + name);
+  // The process id keeps concurrent runs (two build trees, parallel ctest) apart.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("wisp_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+const std::string& simulated(const std::string& scene) {
+  static std::map<std::string, std::string> done;
+  auto it = done.find(scene);
+  if (it != done.end()) return it->second;
+  const std::string dir = fresh_folder("anim_" + std::to_string(done.size()));
+  const std::string wsim = dir + "/" + std::filesystem::path(scene).stem().string() + ".wsim";
+  const CommandResult r =
+      run_command(std::string(WISP_BIN_DIR "/wisp simulate ") + scene + " -o " + wsim + " -q");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  return done.emplace(scene, wsim).first->second;
 }
 
 }  // namespace wisp::test

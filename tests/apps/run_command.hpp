@@ -12,7 +12,11 @@ struct CommandResult {
 
 CommandResult run_command(const std::string& command);
 
-// A fresh empty folder under the system's temporary folder, named after the test.
+// A fresh empty folder under the system's temporary folder, named after the test and process.
 std::string fresh_folder(const std::string& name);
+
+// `wisp simulate scene -o <file>`, run once per test process and scene (ctest runs test cases
+// in parallel processes, so each has its own copy); returns the saved animation's path.
+const std::string& simulated(const std::string& scene);
 
 }  // namespace wisp::test

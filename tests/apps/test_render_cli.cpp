@@ -1,8 +1,6 @@
 // `wisp render` end to end on the default scene at 256x256: every output valid, PNG and SVG
 // agree, hair where the strands are and in the style's colours, deterministic, resumable,
 // coherent over time, and bad input refused cleanly.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -37,17 +35,8 @@ std::string read_file(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// The default scene simulated once per test process (ctest runs test cases in parallel
-// processes, so each has its own copy).
 const std::string& animation() {
-  static const std::string path = [] {
-    const std::string dir = fresh_folder("render_anim_" + std::to_string(getpid()));
-    const std::string wsim = dir + "/default.wsim";
-    const auto r = run_command(kWisp + " simulate " + kScene + " -o " + wsim + " -q");
-    REQUIRE(r.exit_code == 0);
-    return wsim;
-  }();
-  return path;
+  return wisp::test::simulated(kScene);
 }
 
 std::string render(const std::string& dir, const std::string& extra = "") {

@@ -1,8 +1,6 @@
 // Styles end to end (`wisp render` at 256x256 on the default scene): the presets render and look
 // different, shading follows the light, ink lies on the silhouette, PNG and SVG ink agree, and
 // bad style fields are refused with one line naming the field.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -26,16 +24,8 @@ json default_scene() {
   return json::parse(in);
 }
 
-// The default scene simulated once per test process.
 const std::string& animation() {
-  static const std::string path = [] {
-    const std::string dir = fresh_folder("style_anim_" + std::to_string(getpid()));
-    const std::string wsim = dir + "/default.wsim";
-    const auto r = run_command(kWisp + " simulate " + kScene + " -o " + wsim + " -q");
-    REQUIRE(r.exit_code == 0);
-    return wsim;
-  }();
-  return path;
+  return wisp::test::simulated(kScene);
 }
 
 // Renders frame `frame` of the default scene with `style` (and `light`, if given) into a fresh
@@ -113,6 +103,14 @@ TEST_CASE("each preset renders the default scene, and the four look different", 
   for (const auto& p : presets) {
     const std::string dir = render("style_preset_" + p, {{"preset", p}});
     img.push_back(image(dir));
+    // What each preset draws, as stats.json counts it (soft: specular in the colour stops only).
+    std::ifstream in(dir + "/stats.json");
+    const json f = json::parse(in)["frames"][0];
+    INFO(p << ": " << f.dump());
+    CHECK((f["ink_strokes"].get<int>() > 0) == (p == "toon" || p == "anime"));
+    CHECK((f["curve_kinds"]["band_edges"].get<int>() > 0) == (p == "toon" || p == "anime"));
+    CHECK((f["curve_kinds"]["highlights"].get<int>() > 0) == (p == "toon" || p == "anime"));
+    CHECK(f["curve_kinds"]["outlines"].get<int>() > 50);
     REQUIRE(img.back().cols == 256);
     cv::Mat m = mask(dir);
     CHECK(cv::countNonZero(m > 127) > 2000);  // the hair is there
