@@ -3,23 +3,14 @@
 #include <cmath>
 
 #include "io/frame.hpp"
+#include "vector/ink_strokes.hpp"
 
 namespace wisp::io {
 namespace {
 
 using Eigen::Vector2d;
 using Cubic = std::array<Vector2d, 4>;
-
-double width_at(const std::vector<std::pair<double, double>>& stops, double s) {
-  if (stops.empty()) return 0;
-  if (s <= stops.front().first) return stops.front().second;
-  if (s >= stops.back().first) return stops.back().second;
-  size_t hi = 1;
-  while (stops[hi].first < s) ++hi;
-  const auto &a = stops[hi - 1], &b = stops[hi];
-  const double f = b.first > a.first ? (s - a.first) / (b.first - a.first) : 0.0;
-  return a.second + f * (b.second - a.second);
-}
+using vector::width_at;
 
 // The part [u0, u1] of a cubic (de Casteljau twice).
 Cubic sub_cubic(const Cubic& c, double u0, double u1) {

@@ -43,10 +43,29 @@ double outline_parameter(const Wisp& wisp, double t, bool left_side) {
   return std::clamp(best_s, 0.0, 1.0);
 }
 
+namespace {
+
+// Faraj's colour point: the highlight colour at one place along one side, fading back to the
+// hair colour on both sides of it (the inside stops of every outline in the faraj style).
+std::vector<diffusion::ColorStop> faraj_stops(const Wisp& wisp, const HairStyle& style) {
+  const bool left = style.highlight_on_left;
+  const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
+  double s[3] = {outline_parameter(wisp, std::clamp(a - h, 0.0, 1.0), left),
+                 outline_parameter(wisp, a, left),
+                 outline_parameter(wisp, std::clamp(a + h, 0.0, 1.0), left)};
+  std::sort(s, s + 3);
+  return {{0.0, style.hair},
+          {s[0], style.hair},
+          {s[1], style.highlight},
+          {s[2], style.hair},
+          {1.0, style.hair}};
+}
+
+}  // namespace
+
 std::vector<diffusion::DiffusionCurve> hair_curves(
     const std::vector<Wisp>& wisps,
     const std::vector<std::vector<std::pair<double, double>>>& visible, const HairStyle& style) {
-  using diffusion::ColorStop;
   std::vector<diffusion::DiffusionCurve> out;
   out.reserve(wisps.size());
   for (size_t w = 0; w < wisps.size(); ++w) {
@@ -55,19 +74,7 @@ std::vector<diffusion::DiffusionCurve> hair_curves(
     const Wisp& wisp = wisps[w];
     diffusion::DiffusionCurve c;
     c.points = wisp.outline.points;
-    // Faraj's colour point: the highlight colour at one place along one side, fading back to
-    // the hair colour on both sides of it.
-    const bool left = style.highlight_on_left;
-    const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
-    double s[3] = {outline_parameter(wisp, std::clamp(a - h, 0.0, 1.0), left),
-                   outline_parameter(wisp, a, left),
-                   outline_parameter(wisp, std::clamp(a + h, 0.0, 1.0), left)};
-    std::sort(s, s + 3);
-    c.left = {{0.0, style.hair},
-              {s[0], style.hair},
-              {s[1], style.highlight},
-              {s[2], style.hair},
-              {1.0, style.hair}};
+    c.left = faraj_stops(wisp, style);
     c.right = {{0.0, style.shadow}, {1.0, style.shadow}};
     c.active = visible[w];
     out.push_back(std::move(c));
@@ -179,21 +186,6 @@ std::vector<ColorStop> outline_stops(const Wisp& wisp, const WispShader& sh,
   s.front() = 0.0;
   for (size_t i = 1; i < s.size(); ++i) s[i] = std::max(s[i], s[i - 1]);
   return stops_along(sh, tu, s);
-}
-
-// Faraj's colour point (the inside stops of hair_curves).
-std::vector<ColorStop> faraj_stops(const Wisp& wisp, const HairStyle& style) {
-  const bool left = style.highlight_on_left;
-  const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
-  double s[3] = {outline_parameter(wisp, std::clamp(a - h, 0.0, 1.0), left),
-                 outline_parameter(wisp, a, left),
-                 outline_parameter(wisp, std::clamp(a + h, 0.0, 1.0), left)};
-  std::sort(s, s + 3);
-  return {{0.0, style.hair},
-          {s[0], style.hair},
-          {s[1], style.highlight},
-          {s[2], style.hair},
-          {1.0, style.hair}};
 }
 
 // A chart curve mapped to pixels and fitted; `closed` for loops.
