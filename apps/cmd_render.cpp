@@ -205,6 +205,8 @@ void run_render(const RenderArgs& a) {
                           {"ms",
                            {{"wisps", r.time.wisps},
                             {"arrangement", r.time.arrangement},
+                            {"arrangement_sweep", r.arrangement.stats.sweep_ms},
+                            {"arrangement_resolve", r.arrangement.stats.resolve_ms},
                             {"curves", r.time.curves},
                             {"ink", r.time.ink},
                             {"rasterize", r.time.rasterize},

@@ -49,12 +49,20 @@ double segment_distance(const Vec2& a, const Vec2& b, const Vec2& p) {
   return (a + t * d - p).norm();
 }
 
+// The band cells of every wisp of the frame, for depth lookups.
+std::vector<vector::BandCells> band_cells(const InspectFrame& f) {
+  std::vector<vector::BandCells> out;
+  for (const vector::Wisp& w : f.result.wisps) out.push_back(vector::band_cells(w));
+  return out;
+}
+
 // Covering wisps of a face ordered front to back by their depth at p.
-std::vector<std::pair<double, int>> depth_order(const InspectFrame& f, const vector::ViewFace& face,
-                                                const Vec2& p) {
+std::vector<std::pair<double, int>> depth_order(const InspectFrame& f,
+                                                const std::vector<vector::BandCells>& cells,
+                                                const vector::ViewFace& face, const Vec2& p) {
   std::vector<std::pair<double, int>> out;
   for (const auto& [w, winding] : face.cover)
-    out.push_back({vector::band_depth(f.result.wisps[w], p).depth, w});
+    out.push_back({vector::band_depth(f.result.wisps[w], cells[w], p).depth, w});
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -125,7 +133,7 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
       out.push_back(format("face %d: covered by %d wisp%s, %s%s", fi, int(face.cover.size()),
                            face.cover.size() == 1 ? "" : "s", front.c_str(),
                            face.in_view ? "" : " (outside the view)"));
-      for (const auto& [depth, w] : depth_order(f, face, p)) {
+      for (const auto& [depth, w] : depth_order(f, band_cells(f), face, p)) {
         int winding = 0;
         for (const auto& [cw, n] : face.cover)
           if (cw == w) winding = n;
@@ -196,12 +204,13 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
   j["wisps"] = std::move(wisps);
 
   nlohmann::json faces = nlohmann::json::array();
+  const std::vector<vector::BandCells> cells = band_cells(f);
   for (size_t i = 0; i < view.faces.size(); ++i) {
     const vector::ViewFace& face = view.faces[i];
     nlohmann::json cover = nlohmann::json::array(), order = nlohmann::json::array(),
                    holes = nlohmann::json::array();
     for (const auto& [w, n] : face.cover) cover.push_back({{"wisp", w}, {"winding", n}});
-    for (const auto& [depth, w] : depth_order(f, face, face.sample))
+    for (const auto& [depth, w] : depth_order(f, cells, face, face.sample))
       order.push_back({{"wisp", w}, {"depth", depth}});
     for (const auto& h : face.holes) holes.push_back(ring(h));
     faces.push_back({{"id", i},

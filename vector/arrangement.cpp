@@ -59,8 +59,12 @@ struct Resolver {
 
   Resolver(const std::vector<Wisp>& w, const std::vector<OutlineSegment>& s, const PlanarMap& m,
            const ArrangementOptions& o)
-      : wisps(w), segments(s), map(m), options(o) {}
+      : wisps(w), segments(s), map(m), options(o) {
+    cells.reserve(w.size());
+    for (const Wisp& wisp : w) cells.push_back(band_cells(wisp));
+  }
 
+  std::vector<BandCells> cells;  // per wisp, for depth lookups
   std::vector<Cover> cover;      // per face
   std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones in debug view)
   std::vector<char> hair;        // per face: covered and in view
@@ -170,7 +174,7 @@ struct Resolver {
       // in front of every wisp makes the face its own: not hair.
       double best = INFINITY;
       for (const auto& [w, _] : cover[f]) {
-        const double z = w < n_wisps() ? band_depth(wisps[w], sample[f]).depth
+        const double z = w < n_wisps() ? band_depth(wisps[w], cells[w], sample[f]).depth
                                        : options.occluders[w - n_wisps()].depth(sample[f]);
         if (z < best) best = z, front[f] = w;
       }
@@ -206,7 +210,7 @@ struct Resolver {
           const Vector2d ab = seg.b - seg.a;
           const double l = std::clamp((m - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
           const double z = seg.z0 + l * (seg.z1 - seg.z0);
-          const auto other = band_depth_inside(wisps[w], m, 1e-6);
+          const auto other = band_depth_inside(wisps[w], cells[w], m, 1e-6);
           if (other && other->depth < z * (1 - 1e-12)) vis = false;
         }
         visible[i] = vis;
@@ -375,8 +379,8 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
                                   " needs a ring of 3 or more points and a depth function");
     for (size_t i = 0; i < o.ring.size(); ++i) {
       if (!o.ring[i].allFinite())
-        throw std::invalid_argument("arrangement: occluder " + std::to_string(k) +
-                                    ": point " + std::to_string(i) + " is not finite");
+        throw std::invalid_argument("arrangement: occluder " + std::to_string(k) + ": point " +
+                                    std::to_string(i) + " is not finite");
       segments.push_back({o.ring[i], o.ring[(i + 1) % o.ring.size()], int(wisps.size() + k)});
     }
   }

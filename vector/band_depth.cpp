@@ -19,12 +19,6 @@ double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d&
   return (a + l * ab - p).norm();
 }
 
-// Cell i: left_i, left_{i+1}, right_{i+1}, right_i.
-std::array<Vector2d, 4> cell(const Wisp& w, int i) {
-  const Section &a = w.sections[i], &b = w.sections[i + 1];
-  return {a.left, b.left, b.right, a.right};
-}
-
 // Crossing-number test (boundary points may go either way; callers tolerate that).
 bool inside(const std::array<Vector2d, 4>& q, const Vector2d& p) {
   bool in = false;
@@ -44,12 +38,9 @@ double distance_to_cell(const std::array<Vector2d, 4>& q, const Vector2d& p) {
   return d;
 }
 
-bool outside_bounds(const std::array<Vector2d, 4>& q, const Vector2d& p, double margin) {
-  const double x0 = std::min({q[0].x(), q[1].x(), q[2].x(), q[3].x()});
-  const double x1 = std::max({q[0].x(), q[1].x(), q[2].x(), q[3].x()});
-  const double y0 = std::min({q[0].y(), q[1].y(), q[2].y(), q[3].y()});
-  const double y1 = std::max({q[0].y(), q[1].y(), q[2].y(), q[3].y()});
-  return p.x() < x0 - margin || p.x() > x1 + margin || p.y() < y0 - margin || p.y() > y1 + margin;
+bool outside(const Eigen::AlignedBox2d& box, const Vector2d& p, double margin) {
+  return p.x() < box.min().x() - margin || p.x() > box.max().x() + margin ||
+         p.y() < box.min().y() - margin || p.y() > box.max().y() + margin;
 }
 
 BandHit hit(const Wisp& w, int i, const Vector2d& p) {
@@ -62,12 +53,26 @@ BandHit hit(const Wisp& w, int i, const Vector2d& p) {
 
 }  // namespace
 
-BandHit band_depth(const Wisp& w, const Vector2d& p) {
-  std::optional<BandHit> best;
+BandCells band_cells(const Wisp& w) {
+  BandCells c;
   const int cells = int(w.sections.size()) - 1;
+  c.quads.reserve(cells);
+  c.boxes.reserve(cells);
   for (int i = 0; i < cells; ++i) {
-    const auto q = cell(w, i);
-    if (outside_bounds(q, p, 0) || !inside(q, p)) continue;
+    const Section &a = w.sections[i], &b = w.sections[i + 1];
+    c.quads.push_back({a.left, b.left, b.right, a.right});
+    Eigen::AlignedBox2d box(a.left);
+    for (const Vector2d& q : {b.left, b.right, a.right}) box.extend(q);
+    c.boxes.push_back(box);
+  }
+  return c;
+}
+
+BandHit band_depth(const Wisp& w, const BandCells& c, const Vector2d& p) {
+  std::optional<BandHit> best;
+  const int cells = int(c.quads.size());
+  for (int i = 0; i < cells; ++i) {
+    if (outside(c.boxes[i], p, 0) || !inside(c.quads[i], p)) continue;
     const BandHit h = hit(w, i, p);
     if (!best || h.depth < best->depth) best = h;
   }
@@ -76,21 +81,31 @@ BandHit band_depth(const Wisp& w, const Vector2d& p) {
   int nearest = 0;
   double nearest_distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < cells; ++i) {
-    const double d = distance_to_cell(cell(w, i), p);
+    const double d = distance_to_cell(c.quads[i], p);
     if (d < nearest_distance) nearest_distance = d, nearest = i;
   }
   return hit(w, nearest, p);
 }
 
-std::optional<BandHit> band_depth_inside(const Wisp& w, const Vector2d& p, double margin) {
+BandHit band_depth(const Wisp& w, const Vector2d& p) {
+  return band_depth(w, band_cells(w), p);
+}
+
+std::optional<BandHit> band_depth_inside(const Wisp& w, const BandCells& c, const Vector2d& p,
+                                         double margin) {
   std::optional<BandHit> best;
-  for (int i = 0; i + 1 < int(w.sections.size()); ++i) {
-    const auto q = cell(w, i);
-    if (outside_bounds(q, p, -margin) || !inside(q, p) || distance_to_cell(q, p) < margin) continue;
+  for (int i = 0; i < int(c.quads.size()); ++i) {
+    if (outside(c.boxes[i], p, -margin) || !inside(c.quads[i], p) ||
+        distance_to_cell(c.quads[i], p) < margin)
+      continue;
     const BandHit h = hit(w, i, p);
     if (!best || h.depth < best->depth) best = h;
   }
   return best;
+}
+
+std::optional<BandHit> band_depth_inside(const Wisp& w, const Vector2d& p, double margin) {
+  return band_depth_inside(w, band_cells(w), p, margin);
 }
 
 }  // namespace wisp::vector

@@ -7,7 +7,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
 #include <optional>
+#include <vector>
 
 #include "vector/wisp.hpp"
 
@@ -18,13 +21,24 @@ struct BandHit {
   double t = 0;  // centre parameter of the cross-section
 };
 
+// A wisp's cells with their bounding boxes, for many lookups in one wisp (the arrangement asks
+// once per face and wisp covering it).
+struct BandCells {
+  std::vector<std::array<Eigen::Vector2d, 4>> quads;  // left_i, left_i+1, right_i+1, right_i
+  std::vector<Eigen::AlignedBox2d> boxes;
+};
+BandCells band_cells(const Wisp& wisp);
+
 // The front-most cell containing p (on its boundary counts) or, when none does (p a rounding
 // error outside the band), the nearest cell.
+BandHit band_depth(const Wisp& wisp, const BandCells& cells, const Eigen::Vector2d& p);
 BandHit band_depth(const Wisp& wisp, const Eigen::Vector2d& p);
 
 // The front-most cell that contains p at least `margin` px inside its boundary, if any. Used to
 // ask whether another pass of a curl covers a point of the wisp's own outline: the point's own
 // pass has it on its boundary, so the margin leaves that pass out.
+std::optional<BandHit> band_depth_inside(const Wisp& wisp, const BandCells& cells,
+                                         const Eigen::Vector2d& p, double margin);
 std::optional<BandHit> band_depth_inside(const Wisp& wisp, const Eigen::Vector2d& p, double margin);
 
 }  // namespace wisp::vector
