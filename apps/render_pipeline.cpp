@@ -16,26 +16,41 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// The visible regions of each wisp for flat SVGs: the covered faces grouped by their front wisp,
-// each filled with the wisp's colours as a linear gradient from root to tip.
+// Flat SVGs: each wisp's front region with its inside colours as a gradient from root to tip,
+// read off its outline's stops: on the highlight side for Faraj's colour point (where the
+// highlight is), averaged over both sides for lit shading (the light across the wisp is lost).
 std::vector<io::FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
-                                         const vector::ArrangementView& view,
+                                         const vector::WispArrangement& arrangement,
+                                         const std::vector<diffusion::DiffusionCurve>& curves,
+                                         const std::vector<int>& outline_of,
                                          const vector::HairStyle& style) {
+  constexpr int kStops = 16;
+  const bool lit = style.shading.model == vector::ShadingModel::Lit;
   std::vector<io::FlatRegion> out;
-  for (const vector::ViewFace& f : view.faces) {
-    if (f.front < 0 || !f.in_view || f.outer.empty()) continue;
-    const vector::Wisp& w = wisps[f.front];
+  for (size_t w = 0; w < wisps.size() && w < arrangement.front_regions.size(); ++w) {
+    const int c = outline_of[w];
+    if (arrangement.front_regions[w].polygons.empty() || c < 0) continue;
+    const vector::Wisp& wisp = wisps[w];
+    const std::vector<diffusion::ColorStop>& inside = curves[c].left;
     io::FlatRegion r;
-    r.area.outer = f.outer;
-    r.area.holes = f.holes;
-    r.from = w.centre.points.front();
-    r.to = w.centre.points.back();
-    const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
-    r.stops = {{0.0, style.hair},
-               {std::clamp(a - h, 0.0, 1.0), style.hair},
-               {std::clamp(a, 0.0, 1.0), style.highlight},
-               {std::clamp(a + h, 0.0, 1.0), style.hair},
-               {1.0, style.hair}};
+    r.area = arrangement.front_regions[w];
+    r.from = wisp.centre.points.front();
+    r.to = wisp.centre.points.back();
+    std::vector<double> ts;
+    for (int k = 0; k <= kStops; ++k) ts.push_back(double(k) / kStops);
+    if (!lit) {  // the colour point's own places, so the highlight peak is not missed
+      const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
+      for (double t : {a - h, a, a + h}) ts.push_back(std::clamp(t, 0.0, 1.0));
+      std::sort(ts.begin(), ts.end());
+    }
+    for (double t : ts) {
+      const auto colour = [&](bool left) {
+        return diffusion::color_at(inside, vector::outline_parameter(wisp, t, left));
+      };
+      const diffusion::Color col = lit ? diffusion::Color(0.5f * (colour(true) + colour(false)))
+                                       : colour(style.highlight_on_left);
+      r.stops.push_back({t, col});
+    }
     out.push_back(std::move(r));
   }
   return out;
@@ -84,8 +99,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyP
   vector::ArrangementOptions arr;
   arr.view = vector::image_rect(W, H);
   // Curves inside wisps are clipped to the arrangement's faces.
-  arr.debug_view =
-      setup.debug_view || setup.flat_regions || vector::needs_visible_regions(setup.style);
+  arr.debug_view = setup.debug_view || vector::needs_visible_regions(setup.style);
+  arr.front_regions = setup.flat_regions;
   arr.occluders = std::move(occluders);
   r.arrangement = vector::build_arrangement(r.wisps, arr);
   r.time.arrangement = ms_since(t0);
@@ -103,7 +118,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<io::BodyP
   pic.body = std::move(body);
   pic.mask = r.arrangement.mask;
   for (const vector::Wisp& w : r.wisps) pic.outlines.push_back(w.outline.points);
-  if (setup.flat_regions) pic.flat = flat_regions(r.wisps, r.arrangement.view, setup.style);
+  if (setup.flat_regions)
+    pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
   if (setup.style.ink.enabled()) {
     t0 = Clock::now();
     r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);

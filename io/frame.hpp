@@ -50,10 +50,10 @@ struct InkPiece {
 };
 std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step = 0.25);
 
-// A region of one wisp for flat SVGs: its visible area, filled with a linear gradient along the
-// wisp from root to tip.
+// A wisp for flat SVGs: where it is in front, filled with a linear gradient along the wisp from
+// root to tip.
 struct FlatRegion {
-  vector::MaskPolygon area;
+  vector::HairMask area;
   Eigen::Vector2d from{0, 0}, to{0, 0};
   std::vector<std::pair<double, Rgb>> stops;  // offset in [0,1], colour
 };

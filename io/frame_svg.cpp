@@ -49,6 +49,12 @@ std::string mask_path(const vector::MaskPolygon& poly) {
   return o.str();
 }
 
+std::string mask_path(const vector::HairMask& mask) {
+  std::string out;
+  for (const vector::MaskPolygon& poly : mask.polygons) out += mask_path(poly) + ' ';
+  return out;
+}
+
 std::string base64(const std::vector<unsigned char>& bytes) {
   static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -122,8 +128,7 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   }
   o << " </g>\n";
 
-  std::string silhouette;
-  for (const vector::MaskPolygon& poly : pic.mask.polygons) silhouette += mask_path(poly) + ' ';
+  const std::string silhouette = mask_path(pic.mask);
   if (style == SvgStyle::Embedded) {
     o << " <defs>\n  <clipPath id=\"hair-silhouette\" clipPathUnits=\"userSpaceOnUse\">\n"
       << "   <path clip-rule=\"evenodd\" d=\"" << silhouette << "\"/>\n  </clipPath>\n </defs>\n";

@@ -400,6 +400,12 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   r.decide_visibility();
   out.visible = r.visible_intervals();
   out.mask = trace_hair_mask(map, r.hair);
+  if (options.front_regions) {
+    std::vector<int> label(map.faces.size(), -1);
+    for (size_t f = 0; f < label.size(); ++f)
+      if (r.hair[f]) label[f] = r.front[f];
+    out.front_regions = trace_regions(map, label, r.n_wisps());
+  }
 
   std::vector<int> silhouette(map.edge_count(), -1), occlusion(map.edge_count(), -1);
   for (int e = 0; e < map.edge_count(); ++e) {

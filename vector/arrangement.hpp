@@ -37,7 +37,8 @@ struct ArrangementOptions {
   // counts as hair or as visible, and wisps wholly outside are left out before the sweep.
   Eigen::AlignedBox2d view{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   bool clip_to_view = true;
-  bool debug_view = false;  // fill WispArrangement::view
+  bool debug_view = false;     // fill WispArrangement::view
+  bool front_regions = false;  // fill WispArrangement::front_regions
   std::vector<Occluder> occluders;
 };
 
@@ -79,6 +80,9 @@ struct WispArrangement {
   std::vector<InkLine> occlusion;   // where the front-most wisp changes inside the hair
   ArrangementStats stats;
   ArrangementView view;  // only with ArrangementOptions::debug_view
+  // Per input wisp: where it is the front-most wisp (hair faces only), as polygons with holes;
+  // together they tile the hair mask. Only with ArrangementOptions::front_regions.
+  std::vector<HairMask> front_regions;
 };
 
 // Throws std::invalid_argument when clipping is on and the view is empty or not finite.

@@ -230,11 +230,15 @@ bool needs_visible_regions(const HairStyle& style) {
 HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
                       const WispArrangement& arrangement, const HairStyle& style) {
   HairCurves result;
+  result.outline_of.assign(wisps.size(), -1);
   const bool lit = style.shading.model == ShadingModel::Lit;
   const HighlightShape shape = style.specular.shape;
   if (!lit && shape == HighlightShape::None) {
     result.curves = hair_curves(wisps, arrangement.visible, style);
     result.stats.outlines = int(result.curves.size());
+    int k = 0;  // hair_curves keeps the wisps with a visible interval, in order
+    for (size_t w = 0; w < wisps.size() && w < arrangement.visible.size(); ++w)
+      if (!arrangement.visible[w].empty()) result.outline_of[w] = k++;
     return result;
   }
 
@@ -316,6 +320,7 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
     outline.left = lit ? outline_stops(wisp, shader, ts) : faraj_stops(wisp, style);
     outline.right = {{0.0, style.shadow}, {1.0, style.shadow}};
     outline.active = arrangement.visible[w];
+    result.outline_of[w] = int(result.curves.size());
     result.curves.push_back(std::move(outline));
     ++result.stats.outlines;
     if (!regions) continue;

@@ -46,6 +46,7 @@ struct HairCurveStats {
 
 struct HairCurves {
   std::vector<diffusion::DiffusionCurve> curves;  // outlines first (wisp order), then the rest
+  std::vector<int> outline_of;  // per wisp: the index of its outline in `curves`, or -1
   HairCurveStats stats;
 };
 

@@ -19,38 +19,39 @@ double signed_area(const std::vector<Vector2d>& ring) {
 
 }  // namespace
 
-HairMask trace_hair_mask(const PlanarMap& map, const std::vector<char>& hair) {
+std::vector<HairMask> trace_regions(const PlanarMap& map, const std::vector<int>& label,
+                                    int labels) {
   const auto& he = map.halfedges;
-  auto boundary = [&](int h) { return hair[he[h].face] && !hair[he[h ^ 1].face]; };
+  const auto lab = [&](int h) { return label[he[h].face]; };
+  auto boundary = [&](int h) { return lab(h) >= 0 && lab(h) != lab(h ^ 1); };
 
-  // Connected hair regions: faces joined across edges with hair on both sides.
-  std::vector<int> region(map.faces.size(), -1);
-  int regions = 0;
+  // Connected regions: faces joined across edges with the same label on both sides.
+  std::vector<int> region(map.faces.size(), -1), region_label;
   std::vector<int> stack;
   std::vector<std::vector<int>> face_halfedges(map.faces.size());
   for (int h = 0; h < int(he.size()); ++h) face_halfedges[he[h].face].push_back(h);
   for (int f = 0; f < int(map.faces.size()); ++f) {
-    if (!hair[f] || region[f] >= 0) continue;
-    region[f] = regions;
+    if (label[f] < 0 || region[f] >= 0) continue;
+    region[f] = int(region_label.size());
     stack = {f};
     while (!stack.empty()) {
       const int g = stack.back();
       stack.pop_back();
       for (int h : face_halfedges[g]) {
         const int n = he[h ^ 1].face;
-        if (hair[n] && region[n] < 0) region[n] = regions, stack.push_back(n);
+        if (label[n] == label[f] && region[n] < 0) region[n] = region[f], stack.push_back(n);
       }
     }
-    ++regions;
+    region_label.push_back(label[f]);
   }
 
-  // Boundary cycles: from a boundary halfedge, the next one turns around its target through hair
-  // faces until it leaves the hair again, so each cycle stays in one region.
+  // Boundary cycles: from a boundary halfedge, the next one turns around its target through faces
+  // of the same label until it leaves them again, so each cycle stays in one region.
   struct Cycle {
     std::vector<Vector2d> ring;
     double area;
   };
-  std::vector<std::vector<Cycle>> cycles(regions);
+  std::vector<std::vector<Cycle>> cycles(region_label.size());
   std::vector<char> used(he.size(), 0);
   for (int h0 = 0; h0 < int(he.size()); ++h0) {
     if (used[h0] || !boundary(h0)) continue;
@@ -67,21 +68,29 @@ HairMask trace_hair_mask(const PlanarMap& map, const std::vector<char>& hair) {
     cycles[region[he[h0].face]].push_back(std::move(c));
   }
 
-  HairMask mask;
-  for (auto& rc : cycles) {
+  std::vector<HairMask> masks(labels);
+  for (size_t r = 0; r < cycles.size(); ++r) {
+    auto& rc = cycles[r];
     if (rc.empty()) continue;
+    std::vector<MaskPolygon>& polygons = masks[region_label[r]].polygons;
     // The outer boundary turns counter-clockwise (positive area); in a region that touches itself
     // at a vertex there may be more than one, the largest takes the holes.
     std::sort(rc.begin(), rc.end(), [](const Cycle& a, const Cycle& b) { return a.area > b.area; });
-    size_t first_polygon = mask.polygons.size();
+    const size_t first_polygon = polygons.size();
     for (auto& c : rc) {
       if (c.area > 0)
-        mask.polygons.push_back({std::move(c.ring), {}});
-      else if (mask.polygons.size() > first_polygon)
-        mask.polygons[first_polygon].holes.push_back(std::move(c.ring));
+        polygons.push_back({std::move(c.ring), {}});
+      else if (polygons.size() > first_polygon)
+        polygons[first_polygon].holes.push_back(std::move(c.ring));
     }
   }
-  return mask;
+  return masks;
+}
+
+HairMask trace_hair_mask(const PlanarMap& map, const std::vector<char>& hair) {
+  std::vector<int> label(hair.size());
+  for (size_t f = 0; f < hair.size(); ++f) label[f] = hair[f] ? 0 : -1;
+  return std::move(trace_regions(map, label, 1)[0]);
 }
 
 std::vector<InkLine> chain_edges(const PlanarMap& map, const std::vector<int>& owner) {

@@ -31,7 +31,7 @@ const std::string& animation() {
 // Renders frame `frame` of the default scene with `style` (and `light`, if given) into a fresh
 // folder; returns the folder (frame_0000.png / .svg, mask_0000.png).
 std::string render(const std::string& name, const json& style, const json& light = nullptr,
-                   int frame = 0) {
+                   int frame = 0, const std::string& extra = "") {
   const std::string dir = fresh_folder(name);
   json scene = default_scene();
   scene["style"] = style;
@@ -39,9 +39,9 @@ std::string render(const std::string& name, const json& style, const json& light
   scene["render"] = {{"video", false}};
   std::ofstream(dir + "/scene.json") << scene.dump(2);
   const std::string frames = std::to_string(frame) + ":" + std::to_string(frame + 1);
-  const auto r =
-      run_command(kWisp + " render " + dir + "/scene.json -o " + dir +
-                  " --size 256x256 --masks -q --anim " + animation() + " --frames " + frames);
+  const auto r = run_command(kWisp + " render " + dir + "/scene.json -o " + dir +
+                             " --size 256x256 --masks -q --anim " + animation() + " --frames " +
+                             frames + " " + extra);
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   char buf[32];
@@ -135,14 +135,24 @@ TEST_CASE("rotating the light 180 degrees around the head moves the lit side acr
   const json light = {-0.45, 0.6, 0.66};    // the default: upper front left
   const json rotated = {0.45, 0.6, -0.66};  // rotated by 180 degrees about the vertical
   for (const std::string preset : {"toon", "soft", "anime"}) {
+    // Flat SVGs too: each wisp's gradient carries its shading along the wisp.
+    const std::string flat = "--svg-style flat";
     const std::string a =
-        render("style_light_a_" + preset, {{"preset", preset}}, {{"direction", light}});
+        render("style_light_a_" + preset, {{"preset", preset}}, {{"direction", light}}, 0, flat);
     const std::string b =
-        render("style_light_b_" + preset, {{"preset", preset}}, {{"direction", rotated}});
+        render("style_light_b_" + preset, {{"preset", preset}}, {{"direction", rotated}}, 0, flat);
     const double da = lit_side(image(a), mask(a)), db = lit_side(image(b), mask(b));
     INFO(preset << ": lit side " << da << " px with the default light, " << db << " px rotated");
     CHECK(da < -1.0);
     CHECK(db > 1.0);
+    for (const std::string& dir : {a, b})
+      REQUIRE(run_command("rsvg-convert " + dir + "/frame_0000.svg -o " + dir + "/flat.png")
+                  .exit_code == 0);
+    const double fa = lit_side(cv::imread(a + "/flat.png", cv::IMREAD_COLOR), mask(a));
+    const double fb = lit_side(cv::imread(b + "/flat.png", cv::IMREAD_COLOR), mask(b));
+    INFO("flat SVG: lit side " << fa << " px, " << fb << " px rotated");
+    CHECK(fa < -1.0);
+    CHECK(fb > 1.0);
   }
 }
 
