@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "vector/band_depth.hpp"
+#include "vector/polygon.hpp"
 
 namespace wisp::apps {
 namespace {
@@ -23,22 +24,10 @@ std::string format(const char* fmt, ...) {
   return buf;
 }
 
-// Even-odd crossings of the ray from p towards +x with a closed ring.
-bool crosses_odd(const std::vector<Vec2>& ring, const Vec2& p) {
-  bool odd = false;
-  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    const Vec2 &a = ring[i], &b = ring[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      odd = !odd;
-  }
-  return odd;
-}
-
 bool face_contains(const vector::ViewFace& f, const Vec2& p) {
-  if (f.outer.empty() || !crosses_odd(f.outer, p)) return false;
+  if (f.outer.empty() || !vector::inside_polygon(f.outer, p)) return false;
   for (const auto& hole : f.holes)
-    if (!hole.empty() && crosses_odd(hole, p)) return false;
+    if (!hole.empty() && vector::inside_polygon(hole, p)) return false;
   return true;
 }
 

@@ -131,15 +131,4 @@ std::vector<ChartContour> chart_contours(const ChartGrid& g, double level,
   return out;
 }
 
-bool inside_polygon(const std::vector<Vector2d>& ring, const Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    const Vector2d &a = ring[i], &b = ring[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      in = !in;
-  }
-  return in;
-}
-
 }  // namespace wisp::vector

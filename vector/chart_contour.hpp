@@ -26,7 +26,4 @@ struct ChartContour {
 std::vector<ChartContour> chart_contours(const ChartGrid& grid, double level,
                                          const std::function<double(double, double)>& exact = {});
 
-// Point in a closed (t, u) polygon (even-odd).
-bool inside_polygon(const std::vector<Eigen::Vector2d>& ring, const Eigen::Vector2d& p);
-
 }  // namespace wisp::vector

@@ -12,6 +12,7 @@
 
 #include "vector/chart_contour.hpp"
 #include "vector/highlights.hpp"
+#include "vector/polygon.hpp"
 #include "vector/stroke_fit.hpp"
 #include "vector/visible_region.hpp"
 #include "vector/wisp_chart.hpp"

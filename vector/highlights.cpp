@@ -7,22 +7,12 @@
 #include <numeric>
 
 #include "vector/chart_contour.hpp"
+#include "vector/polygon.hpp"
 
 namespace wisp::vector {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-namespace {
-
-double signed_area(const ChartPolygon& p) {
-  double a = 0;
-  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
-    a += p[j].x() * p[i].y() - p[i].x() * p[j].y();
-  return 0.5 * a;
-}
-
-}  // namespace
 
 std::vector<ChartPolygon> band_highlights(const WispChart& chart, const std::vector<double>& ts,
                                           const HighlightStyle& style, const Vector3d& light) {

@@ -4,20 +4,11 @@
 #include <algorithm>
 #include <numeric>
 
+#include "vector/polygon.hpp"
+
 namespace wisp::vector {
 
 using Eigen::Vector2d;
-
-namespace {
-
-double signed_area(const std::vector<Vector2d>& ring) {
-  double a = 0;
-  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-    a += ring[j].x() * ring[i].y() - ring[i].x() * ring[j].y();
-  return 0.5 * a;
-}
-
-}  // namespace
 
 std::vector<HairMask> trace_regions(const PlanarMap& map, const std::vector<int>& label,
                                     int labels) {
