@@ -40,18 +40,20 @@ nlohmann::json read_json(const fs::path& p) {
 int run_render(const std::vector<std::string>& args) {
   const fs::path exe_dir = fs::canonical("/proc/self/exe").parent_path();
   const std::string wisp = (exe_dir / "wisp").string();
-  const std::string scene = args.empty() ? std::string(WISP_SOURCE_DIR "/data/scenes/default.json")
-                                         : args[0];
+  const std::string scene =
+      args.empty() ? std::string(WISP_SOURCE_DIR "/data/scenes/default.json") : args[0];
   const int frames = 24;
-  const fs::path dir = fs::temp_directory_path() / ("wisp_bench_render_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("wisp_bench_render_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string anim = (dir / "anim.wsim").string();
   if (run(wisp + " simulate " + scene + " -o " + anim + " -q", nullptr) != 0) {
     std::fprintf(stderr, "wisp-bench render: simulation of %s failed\n", scene.c_str());
     return 1;
   }
-  std::printf("{\n  \"benchmark\": \"render\",\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"sizes\": [\n",
-              scene.c_str(), frames);
+  std::printf(
+      "{\n  \"benchmark\": \"render\",\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"sizes\": [\n",
+      scene.c_str(), frames);
   const int sizes[] = {512, 1024};
   for (size_t i = 0; i < 2; ++i) {
     const int n = sizes[i];
@@ -66,10 +68,11 @@ int run_render(const std::vector<std::string>& args) {
     const fs::path out = dir / ("frames" + std::to_string(n));
     run(common + " --frames 0:" + std::to_string(frames) + " -o " + out.string(), &peak);
     const nlohmann::json st = read_json(out / "stats.json");
-    std::printf("    {\"size\": %d, \"frames_per_second\": %.2f, \"first_frame_ms\": %.1f, "
-                "\"peak_memory_mb\": %.0f, \"stage_ms_median\": %s}%s\n",
-                n, st["frames_per_second"].get<double>(), first_ms, peak,
-                st["stage_ms_median"].dump().c_str(), i + 1 < 2 ? "," : "");
+    std::printf(
+        "    {\"size\": %d, \"frames_per_second\": %.2f, \"first_frame_ms\": %.1f, "
+        "\"peak_memory_mb\": %.0f, \"stage_ms_median\": %s}%s\n",
+        n, st["frames_per_second"].get<double>(), first_ms, peak,
+        st["stage_ms_median"].dump().c_str(), i + 1 < 2 ? "," : "");
     std::fflush(stdout);
   }
   std::printf("  ]\n}\n");

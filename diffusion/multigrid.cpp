@@ -415,12 +415,11 @@ struct RowCouplings {
 
   void neighbour_sum(const float* __restrict e, float* __restrict out, int w) const {
     const int s = stride;
-    const float *__restrict pe = ae, *__restrict pw = aw, *__restrict ps = as, *__restrict pn = an;
+    const float* __restrict pe = ae, * __restrict pw = aw, * __restrict ps = as, * __restrict pn = an;
     for (int x = 0; x < w; ++x)
       out[x] = pe[x] * e[x + 1] + pw[x] * e[x - 1] + ps[x] * e[x + s] + pn[x] * e[x - s];
     if (!nine_point) return;
-    const float *__restrict pse = ase, *__restrict pnw = anw, *__restrict psw = asw,
-                              *__restrict pne = ane;
+    const float* __restrict pse = ase, * __restrict pnw = anw, * __restrict psw = asw, * __restrict pne = ane;
     for (int x = 0; x < w; ++x)
       out[x] += pse[x] * e[x + s + 1] + pnw[x] * e[x - s - 1] + psw[x] * e[x + s - 1] +
                 pne[x] * e[x - s + 1];

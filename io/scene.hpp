@@ -49,15 +49,4 @@ Scene load_scene(const std::filesystem::path& path);
 // Validates an already parsed document; `path` names it in messages and anchors relative files.
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& path);
 
-// Everything the simulator needs from a scene: reads the head mesh (OBJ) and the hair file if the
-// scene names them, builds or selects the guides. Errors name the file and the scene field.
-sim::SimSetup load_sim_setup(const Scene& scene);
-
-// The body the scene draws (render.body, render.torso) around its head (sim::body_params): all
-// parts off when render.body is false.
-sim::BodyParams body_params(const Scene& scene);
-
-// Projector options for the scene: its light, and its drawn neck and torso as occluders.
-sim::ProjectorOptions projector_options(const Scene& scene);
-
 }  // namespace wisp::io

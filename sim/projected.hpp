@@ -23,11 +23,11 @@ struct ProjectedStrand {
 
 struct ProjectedFrame {
   int frame = 0;
-  double time = 0;          // seconds
-  int width = 0;            // image size in pixels
+  double time = 0;  // seconds
+  int width = 0;    // image size in pixels
   int height = 0;
-  double focal_px = 0;      // focal length in pixels: a length L at depth z spans L*focal_px/z px
-  Eigen::Vector3d eye = Eigen::Vector3d::Zero();        // camera position (world)
+  double focal_px = 0;  // focal length in pixels: a length L at depth z spans L*focal_px/z px
+  Eigen::Vector3d eye = Eigen::Vector3d::Zero();         // camera position (world)
   Eigen::Vector3d light_dir = Eigen::Vector3d::UnitZ();  // unit direction towards the light
   std::vector<ProjectedStrand> strands;
 };

@@ -32,7 +32,7 @@ SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, con
 
 // The setup of a procedural hair model: make_base_setup plus generate_hair's guides, kept
 // sim.collision_margin + 2 mm off the head. (Scenes with strand files are prepared by
-// io::load_sim_setup, which reads the file first.)
+// render::load_sim_setup, which reads the file first.)
 SimSetup make_setup(const HeadParams& head, const HairParams& hair, const MotionParams& motion,
                     const SimParams& sim, const TriangleMesh& mesh = {});
 

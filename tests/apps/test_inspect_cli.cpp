@@ -13,7 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <set>
 
-#include "apps/inspect_layers.hpp"
+#include "apps/inspect/layers.hpp"
 #include "run_command.hpp"
 
 using nlohmann::json;
@@ -150,12 +150,12 @@ const PixelFaces& pixel_faces() {
   return out;
 }
 
-cv::Vec3b bgr(const wisp::apps::Rgb8& c) {
+cv::Vec3b bgr(const wisp::inspect::Rgb8& c) {
   return {c[2], c[1], c[0]};
 }
 
 // Pixels of `img` within `radius` of `p` that have colour `c` (up to `tol` per channel).
-bool colour_near(const cv::Mat& img, cv::Point2d p, const wisp::apps::Rgb8& c, int radius,
+bool colour_near(const cv::Mat& img, cv::Point2d p, const wisp::inspect::Rgb8& c, int radius,
                  int tol) {
   const cv::Vec3b want = bgr(c);
   for (int y = int(p.y) - radius; y <= int(p.y) + radius; ++y)
@@ -169,7 +169,7 @@ bool colour_near(const cv::Mat& img, cv::Point2d p, const wisp::apps::Rgb8& c, i
   return false;
 }
 
-int count_not(const cv::Mat& img, const wisp::apps::Rgb8& c) {
+int count_not(const cv::Mat& img, const wisp::inspect::Rgb8& c) {
   int n = 0;
   for (auto it = img.begin<cv::Vec3b>(); it != img.end<cv::Vec3b>(); ++it) n += *it != bgr(c);
   return n;
@@ -177,7 +177,8 @@ int count_not(const cv::Mat& img, const wisp::apps::Rgb8& c) {
 
 }  // namespace
 
-TEST_CASE("wisp-inspect --dump writes the renderer's arrangement: faces, edges, wisps", "[cli][inspect]") {
+TEST_CASE("wisp-inspect --dump writes the renderer's arrangement: faces, edges, wisps",
+          "[cli][inspect]") {
   const json& d = dump();
   std::ifstream in(rendered() + "/stats.json");
   const json stats = json::parse(in)["frames"][0];
@@ -232,13 +233,13 @@ TEST_CASE("the faces layer gives each covered face its own colour, the front wis
   const PixelFaces& px = pixel_faces();
   // The colour each covered face must have: face_color(front, its number among covered faces),
   // distinct for every face while there are fewer than kFaceCodes.
-  REQUIRE(faces.size() < size_t(wisp::apps::kFaceCodes));
+  REQUIRE(faces.size() < size_t(wisp::inspect::kFaceCodes));
   std::map<int, cv::Vec3b> expected;
   std::map<std::array<std::uint8_t, 3>, int> face_of_colour;
   int number = 0;
   for (size_t f = 0; f < faces.size(); ++f)
     if (faces[f]["covered"].get<bool>()) {
-      const cv::Vec3b c = bgr(wisp::apps::face_color(faces[f]["front"], number++));
+      const cv::Vec3b c = bgr(wisp::inspect::face_color(faces[f]["front"], number++));
       expected[int(f)] = c;
       face_of_colour[{c[0], c[1], c[2]}] = int(f);
     }
@@ -249,7 +250,7 @@ TEST_CASE("the faces layer gives each covered face its own colour, the front wis
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
       const cv::Vec3b v = img.at<cv::Vec3b>(y, x);
-      if (v != bgr(wisp::apps::kBackground)) {
+      if (v != bgr(wisp::inspect::kBackground)) {
         const auto it = face_of_colour.find({v[0], v[1], v[2]});
         if (it == face_of_colour.end())
           ++stray;
@@ -292,14 +293,14 @@ TEST_CASE("the coverage layer shows how many wisps cover each face", "[cli][insp
       const int f = px.owner[y * kSize + x];
       if (f < 0) {
         ++uncovered;
-        background += v == bgr(wisp::apps::kBackground);
+        background += v == bgr(wisp::inspect::kBackground);
         continue;
       }
       if (px.near_border[y * kSize + x]) continue;
       ++clear_pixels;
       const int count = int(faces[f]["cover"].size());
       deep += count >= 3;
-      agree += v == bgr(wisp::apps::coverage_color(count));
+      agree += v == bgr(wisp::inspect::coverage_color(count));
     }
   CHECK(agree == clear_pixels);
   CHECK(background == uncovered);
@@ -321,7 +322,7 @@ TEST_CASE("the mask and image layers are the renderer's mask and frame", "[cli][
 
 TEST_CASE("line layers draw what they name", "[cli][inspect]") {
   const json& d = dump();
-  using namespace wisp::apps;
+  using namespace wisp::inspect;
 
   // Intersection vertices: a dot at (nearly) every one inside the frame.
   const cv::Mat vertices = snapshot("vertices");
@@ -368,11 +369,11 @@ TEST_CASE("line layers draw what they name", "[cli][inspect]") {
 
 TEST_CASE("the solver layers show the constraints and a shrinking residual", "[cli][inspect]") {
   const cv::Mat constraints = snapshot("constraints");
-  CHECK(count_not(constraints, wisp::apps::kBackground) > 500);
+  CHECK(count_not(constraints, wisp::inspect::kBackground) > 500);
   // Residual after the FMG start against after the last cycle: the picture darkens (log scale).
   const cv::Mat first = snapshot("residual", "--residual-step 0");
   const cv::Mat last = snapshot("residual");
-  CHECK(count_not(first, wisp::apps::kBackground) > 100);
+  CHECK(count_not(first, wisp::inspect::kBackground) > 100);
   CHECK(cv::sum(first)[0] + cv::sum(first)[1] + cv::sum(first)[2] >
         cv::sum(last)[0] + cv::sum(last)[1] + cv::sum(last)[2]);
 }

@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <opencv2/highgui.hpp>
 
-#include "apps/inspect_layers.hpp"
-#include "apps/inspect_view.hpp"
+#include "apps/inspect/layers.hpp"
+#include "apps/inspect/view.hpp"
 
-using namespace wisp::apps;
+using namespace wisp::inspect;
 
 namespace {
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/render/scene_setup.hpp"
 #include "io/hair_file.hpp"
 #include "io/hair_json.hpp"
 #include "io/scene.hpp"
@@ -123,7 +124,7 @@ TEST_CASE("a .hair file becomes evenly spread, resampled guides on the head", "[
   std::ofstream(dir / "scene.json") << R"({"hair": {"source": "hair", "file": "ring.hair",
       "count": 8, "segments": 10, "file_scale": 0.01, "file_z_up": true}})";
   const Scene scene = load_scene(dir / "scene.json");
-  const wisp::sim::SimSetup setup = load_sim_setup(scene);
+  const wisp::sim::SimSetup setup = wisp::render::load_sim_setup(scene);
   REQUIRE(setup.rest.size() == 8);
   const wisp::sim::HeadShape head(setup.head);
   for (const auto& g : setup.rest) {

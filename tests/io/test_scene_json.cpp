@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/render/scene_setup.hpp"
 #include "io/scene.hpp"
 
 using nlohmann::json;
@@ -107,7 +108,7 @@ TEST_CASE("NaN in keyframes and malformed JSON are clear errors", "[io][scene]")
   // A scene naming a missing OBJ fails when its setup is loaded, naming the field and the file.
   const auto obj = write("obj.json", R"({"head": {"shape": "mesh", "mesh": "nothere.obj"}})");
   const wisp::io::Scene s = wisp::io::load_scene(obj);
-  CHECK_THROWS_WITH(wisp::io::load_sim_setup(s),
+  CHECK_THROWS_WITH(wisp::render::load_sim_setup(s),
                     Catch::Contains("head.mesh") && Catch::Contains("nothere.obj"));
   std::filesystem::remove_all(dir);
 }
@@ -169,19 +170,19 @@ TEST_CASE("the scene's body and projector options follow render.body and render.
   wisp::io::Scene s = parse_scene(json::parse(R"({"head": {"shoulder_radius": 0.05},
                                                   "light": {"direction": [1, 0, 0]}})"),
                                   "scene.json");
-  wisp::sim::BodyParams b = wisp::io::body_params(s);
+  wisp::sim::BodyParams b = wisp::render::body_params(s);
   CHECK((b.head && b.neck && b.torso));
   CHECK(b.shoulders.radius == 0.05);  // the collision capsule
-  wisp::sim::ProjectorOptions o = wisp::io::projector_options(s);
+  wisp::sim::ProjectorOptions o = wisp::render::projector_options(s);
   CHECK(o.light_dir == Eigen::Vector3d::UnitX());
   REQUIRE(o.body);
   CHECK(o.body->torso);
   s.render.torso = false;
-  b = wisp::io::body_params(s);
+  b = wisp::render::body_params(s);
   CHECK((b.head && !b.neck && !b.torso));
-  CHECK(!wisp::io::projector_options(s).body);
+  CHECK(!wisp::render::projector_options(s).body);
   s.render.body = false;
-  b = wisp::io::body_params(s);
+  b = wisp::render::body_params(s);
   CHECK((!b.head && !b.neck && !b.torso));
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/render/scene_setup.hpp"
 #include "io/scene.hpp"
 #include "io/scene_mesh.hpp"
 #include "sim/head.hpp"
@@ -78,7 +79,7 @@ TEST_CASE("a scene with a mesh head and shoulders simulates", "[io][obj]") {
     "hair": {"count": 10, "segments": 12, "length": 0.4},
     "motion": {"preset": "nod", "duration": 1.0}})";
   const wisp::io::Scene scene = wisp::io::load_scene(dir / "scene.json");
-  const wisp::sim::SimSetup setup = wisp::io::load_sim_setup(scene);
+  const wisp::sim::SimSetup setup = wisp::render::load_sim_setup(scene);
   REQUIRE(setup.rest.size() == 10);
   REQUIRE(setup.shoulders);
   const wisp::sim::Animation anim = wisp::sim::simulate(setup);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "apps/render/scene_setup.hpp"
 #include "io/scene.hpp"
 #include "sim/body.hpp"
 #include "sim/camera.hpp"
@@ -41,10 +42,10 @@ TEST_CASE("every shipped scene simulates, and its hair sits on the head inside t
     scene.motion.duration = std::min(scene.motion.duration, 1.0);
     // The head keeps its pose after the last key, so a shortened keyed motion still works.
     scene.camera.width = scene.camera.height = 256;
-    const wisp::sim::SimSetup setup = wisp::io::load_sim_setup(scene);
+    const wisp::sim::SimSetup setup = wisp::render::load_sim_setup(scene);
     const wisp::sim::Animation anim = wisp::sim::simulate(setup);
-    wisp::sim::Projector projector(anim.head, scene.camera, wisp::io::projector_options(scene));
-    const wisp::sim::BodyModel body(anim.head, wisp::io::body_params(scene));
+    wisp::sim::Projector projector(anim.head, scene.camera, wisp::render::projector_options(scene));
+    const wisp::sim::BodyModel body(anim.head, wisp::render::body_params(scene));
     const wisp::sim::HeadShape head(anim.head);
     int samples = 0, outside_frame = 0, roots_off_head = 0;
     double deepest = 1;
@@ -88,7 +89,7 @@ TEST_CASE("long-wind's gusts visibly move the hair", "[io][scenes]") {
   // Spread over time of the mean tip position along the wind.
   const auto tip_spread = [&](double gust) {
     scene.sim.wind.gust = gust;
-    const wisp::sim::Animation anim = wisp::sim::simulate(wisp::io::load_sim_setup(scene));
+    const wisp::sim::Animation anim = wisp::sim::simulate(wisp::render::load_sim_setup(scene));
     const Vector3d dir = scene.sim.wind.velocity.normalized();
     double sum = 0, sum2 = 0;
     for (const auto& f : anim.frames) {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/frame.hpp"
+#include "apps/render/picture.hpp"
 #include "io/ramp_file.hpp"
 #include "io/scene.hpp"
 #include "vector/toon_ramp.hpp"
@@ -132,12 +132,12 @@ TEST_CASE("bad style values name the field", "[io][style]") {
 
 TEST_CASE("ink strokes become constant-width pieces within half a step of the width",
           "[io][style]") {
-  wisp::io::InkStroke s;
+  wisp::render::InkStroke s;
   // Two cubics along x, the width falling linearly from 4 to 0 over the path.
   s.curve = {{0, 0}, {10, 0}, {20, 0}, {30, 0}, {40, 0}, {50, 0}, {60, 0}};
   s.curve_width = {{0.0, 4.0}, {1.0, 0.0}};
   const double step = 0.25;
-  const auto pieces = wisp::io::ink_pieces(s, step);
+  const auto pieces = wisp::render::ink_pieces(s, step);
   REQUIRE(!pieces.empty());
   double prev_end = 0;
   for (const auto& p : pieces) {
@@ -155,7 +155,7 @@ TEST_CASE("ink strokes become constant-width pieces within half a step of the wi
   // Widths step down monotonically, and constant stretches are single pieces.
   for (size_t i = 1; i < pieces.size(); ++i) CHECK(pieces[i].width < pieces[i - 1].width);
   s.curve_width = {{0.0, 2.0}, {1.0, 2.0}};
-  const auto constant = wisp::io::ink_pieces(s, step);
+  const auto constant = wisp::render::ink_pieces(s, step);
   REQUIRE(constant.size() == 1);
   CHECK(constant[0].points == s.curve);
   CHECK(constant[0].width == 2.0);

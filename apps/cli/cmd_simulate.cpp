@@ -1,0 +1,59 @@
+// `wisp simulate scene.json -o anim.wsim`: runs the strand simulation of a scene and saves every
+// frame's head pose and strands (io/anim_file.hpp), with a progress bar and a one-line summary.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "apps/cli/commands.hpp"
+#include "apps/render/progress.hpp"
+#include "apps/render/scene_setup.hpp"
+#include "io/anim_file.hpp"
+#include "io/scene.hpp"
+#include "sim/simulate.hpp"
+
+namespace wisp::cli {
+
+void add_simulate_command(CLI::App& app) {
+  struct Options {
+    std::string scene, output, model;
+    bool quiet = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("simulate", "Simulate a scene's hair and save the animation");
+  cmd->add_option("scene", opt->scene, "scene JSON (docs/scene.md)")->required();
+  cmd->add_option("-o,--output", opt->output, "animation file to write (.wsim)")->required();
+  cmd->add_option("--model", opt->model, "override sim.model: dftl, featherstone or rope")
+      ->check(CLI::IsMember({"dftl", "featherstone", "rope"}));
+  cmd->add_flag("-q,--quiet", opt->quiet, "no progress bar or summary");
+  cmd->callback([opt]() {
+    io::Scene scene = io::load_scene(opt->scene);
+    if (!opt->model.empty()) scene.sim.model = opt->model;
+    const sim::SimSetup setup = render::load_sim_setup(scene);
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<render::ProgressBar> bar;
+    if (!opt->quiet)
+      bar = std::make_unique<render::ProgressBar>(
+          "simulate", static_cast<int>(setup.duration * setup.sim.fps) + 1);
+    const sim::Animation anim = sim::simulate(setup, [&](int done, int) {
+      if (bar) bar->update(done);
+    });
+    if (bar) bar->finish();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    io::write_animation(opt->output, anim);
+    if (!opt->quiet) {
+      double stretch = 0;
+      for (const auto& f : anim.frames)
+        stretch = std::max(stretch, sim::max_stretch(f, setup.rest));
+      std::printf(
+          "%s: %zu frames, %zu guides x %zu samples, model %s, %.2f s per simulated "
+          "second, max stretch %.2g\n",
+          opt->output.c_str(), anim.frames.size(), setup.rest.size(),
+          setup.rest.empty() ? std::size_t{0} : setup.rest[0].size(), setup.sim.model.c_str(),
+          seconds / setup.duration, stretch);
+    }
+  });
+}
+
+}  // namespace wisp::cli

@@ -1,0 +1,156 @@
+// Body occluders: silhouettes and per-pixel depth of the body's closed surfaces (see
+// body_occluders.hpp).
+#include "apps/render/body_occluders.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+
+namespace wisp::render {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+// Triangles grouped into closed surfaces: triangles sharing a vertex (exactly the same point,
+// as the model emits them) belong together.
+std::vector<std::vector<int>> surfaces(const std::vector<Eigen::Matrix3d>& tris) {
+  std::vector<int> parent(tris.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::array<double, 3>, int> owner;
+  for (int t = 0; t < int(tris.size()); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const Vector3d v = tris[t].col(c);
+      auto [it, fresh] = owner.insert({{v.x(), v.y(), v.z()}, t});
+      if (!fresh) parent[find(t)] = find(it->second);
+    }
+  std::map<int, std::vector<int>> groups;
+  for (int t = 0; t < int(tris.size()); ++t) groups[find(t)].push_back(t);
+  std::vector<std::vector<int>> out;
+  for (auto& [_, g] : groups) out.push_back(std::move(g));
+  return out;
+}
+
+// Convex hull (Andrew's monotone chain), counter-clockwise in (x, y).
+std::vector<Vector2d> convex_hull(std::vector<Vector2d> p) {
+  std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
+  });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  const auto cross = [](const Vector2d& o, const Vector2d& a, const Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Vector2d> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+// One surface: its triangles in world space and a coarse grid over their projections, so that
+// a depth query only tests the triangles near the pixel.
+struct Surface {
+  std::vector<Eigen::Matrix3d> world;
+  std::vector<std::array<Vector2d, 3>> pixel;
+  Eigen::AlignedBox2d box;
+  int cells = 1;
+  std::vector<std::vector<int>> grid;
+  sim::Camera camera;
+  double bias = 0;
+
+  int cell(double v, double lo, double hi) const {
+    return std::clamp(int((v - lo) / (hi - lo) * cells), 0, cells - 1);
+  }
+
+  void build() {
+    cells = std::clamp(int(std::sqrt(double(world.size()))), 1, 64);
+    grid.assign(size_t(cells) * cells, {});
+    for (int t = 0; t < int(pixel.size()); ++t) {
+      Eigen::AlignedBox2d b;
+      for (const Vector2d& q : pixel[t]) b.extend(q);
+      for (int y = cell(b.min().y(), box.min().y(), box.max().y());
+           y <= cell(b.max().y(), box.min().y(), box.max().y()); ++y)
+        for (int x = cell(b.min().x(), box.min().x(), box.max().x());
+             x <= cell(b.max().x(), box.min().x(), box.max().x()); ++x)
+          grid[size_t(y) * cells + x].push_back(t);
+    }
+  }
+
+  // Distance along the eye ray through pixel p to the nearest triangle (Moller-Trumbore).
+  double depth(const Vector2d& p) const {
+    if (!box.contains(p)) return INFINITY;
+    const Vector3d dir =
+        (camera.forward + camera.right * ((p.x() - 0.5 * camera.width) / camera.focal_px) -
+         camera.up * ((p.y() - 0.5 * camera.height) / camera.focal_px))
+            .normalized();
+    double best = INFINITY;
+    const auto& bucket = grid[size_t(cell(p.y(), box.min().y(), box.max().y())) * cells +
+                              cell(p.x(), box.min().x(), box.max().x())];
+    for (int t : bucket) {
+      const Vector3d a = world[t].col(0), e1 = world[t].col(1) - a, e2 = world[t].col(2) - a;
+      const Vector3d q = dir.cross(e2);
+      const double det = e1.dot(q);
+      if (std::abs(det) < 1e-14) continue;
+      const Vector3d s = camera.eye - a;
+      const double u = s.dot(q) / det;
+      if (u < 0 || u > 1) continue;
+      const Vector3d r = s.cross(e1);
+      const double v = dir.dot(r) / det;
+      if (v < 0 || u + v > 1) continue;
+      const double d = e2.dot(r) / det;
+      if (d > 0) best = std::min(best, d);
+    }
+    return best + bias;
+  }
+};
+
+}  // namespace
+
+std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const sim::HeadPose& pose,
+                                             const sim::Camera& camera, double bias) {
+  const std::vector<Eigen::Matrix3d> tris = body.world_triangles(pose);
+  std::vector<vector::Occluder> out;
+  for (const std::vector<int>& group : surfaces(tris)) {
+    auto s = std::make_shared<Surface>();
+    s->camera = camera;
+    s->bias = bias;
+    std::vector<Vector2d> points;
+    bool behind = false;
+    for (int t : group) {
+      s->world.push_back(tris[t]);
+      std::array<Vector2d, 3> px;
+      for (int c = 0; c < 3; ++c) {
+        behind |= (Vector3d(tris[t].col(c)) - camera.eye).dot(camera.forward) <= 1e-3;
+        px[c] = camera.project(tris[t].col(c));
+        points.push_back(px[c]);
+        s->box.extend(px[c]);
+      }
+      s->pixel.push_back(px);
+    }
+    // A surface reaching behind the eye has no meaningful silhouette; it is left out.
+    if (behind || points.size() < 3) continue;
+    s->build();
+    vector::Occluder o;
+    o.ring = convex_hull(points);
+    if (o.ring.size() < 3) continue;
+    o.depth = [s](const Vector2d& p) { return s->depth(p); };
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+}  // namespace wisp::render

@@ -1,0 +1,91 @@
+// A finished frame as layers of plain geometry, in pixels, back to front: background, body,
+// the smooth-shaded hair clipped by the hair mask, ink strokes. The same picture is written as
+// a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
+// image clipped by the silhouette, or flat per-wisp gradients).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "diffusion/render.hpp"
+#include "vector/arrangement.hpp"
+
+namespace wisp::render {
+
+using Rgb = Eigen::Vector3f;  // [0,1]
+
+struct BodyPolygon {
+  std::vector<Eigen::Vector2d> points;
+  Rgb color = Rgb::Zero();
+};
+
+// A variable-width stroke: the polyline's width at each point, in pixels.
+struct InkStroke {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> width;
+  Rgb color = Rgb::Zero();
+  bool closed = false;
+  // The stroke as a cubic Bezier path (3k+1 control points, parameter s uniform over the cubics)
+  // with its full width as (s, px) stops, linear in between. When set, PNG and SVG draw this
+  // (see ink_pieces) and `points`/`width` are its flattening, for tools that want polylines.
+  std::vector<Eigen::Vector2d> curve;
+  std::vector<std::pair<double, double>> curve_width;
+};
+
+// A variable-width Bezier stroke as constant-width stroked paths, drawn the same way in the PNG
+// (Cairo) and the SVG (one <path> with stroke-width each; rsvg is Cairo, browsers stroke alike):
+// the cubics are split (de Casteljau, exact geometry) wherever the width, rounded to a multiple
+// of `step` px, changes, and consecutive pieces of the same rounded width form one path, stroked
+// with round caps and joins. Widths are thus within step/2 of the exact profile; pieces rounding
+// to 0 are left out. A filled outline of offset curves would follow the width exactly but needs
+// offset approximations that fold on tight bends; stroking keeps every path a real stroke that
+// editors understand.
+struct InkPiece {
+  std::vector<Eigen::Vector2d> points;  // 3k+1 control points
+  double width = 0;
+};
+std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step = 0.25);
+
+// A wisp for flat SVGs: where it is in front, filled with a linear gradient along the wisp from
+// root to tip.
+struct FlatRegion {
+  vector::HairMask area;
+  Eigen::Vector2d from{0, 0}, to{0, 0};
+  std::vector<std::pair<double, Rgb>> stops;  // offset in [0,1], colour
+};
+
+struct FramePicture {
+  int width = 0, height = 0;
+  Rgb background{1, 1, 1};
+  std::vector<BodyPolygon> body;  // back to front
+  diffusion::Image hair;          // full-frame smooth shading (may be empty: no hair)
+  vector::HairMask mask;          // where the hair image shows
+  std::vector<InkStroke> ink;     // on top of everything
+  // SVG only: the wisp outlines (3k+1 Bezier control points each), in a hidden debug group,
+  // and the per-wisp regions of --svg-style flat.
+  std::vector<std::vector<Eigen::Vector2d>> outlines;
+  std::vector<FlatRegion> flat;
+};
+
+// 8-bit RGBA, row-major, not premultiplied (alpha is 255 everywhere: frames are opaque).
+std::vector<std::uint8_t> rasterize_frame(const FramePicture& picture);
+
+// Only the anti-aliased hair mask, as coverage in [0,255] per pixel (row-major).
+std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width, int height);
+
+// Written atomically; errors name the file.
+void write_frame_png(const FramePicture& picture, const std::filesystem::path& path);
+// The anti-aliased hair mask as an 8-bit grey PNG (a matte for compositing elsewhere).
+void write_mask_png(const vector::HairMask& mask, int width, int height,
+                    const std::filesystem::path& path);
+
+enum class SvgStyle { Embedded, Flat };
+void write_frame_svg(const FramePicture& picture, const std::filesystem::path& path,
+                     SvgStyle style);
+std::string format_frame_svg(const FramePicture& picture, SvgStyle style);
+
+}  // namespace wisp::render

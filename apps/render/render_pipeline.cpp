@@ -1,0 +1,148 @@
+// The per-frame pipeline (see render_pipeline.hpp).
+#include "apps/render/render_pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "diffusion/rasterize.hpp"
+#include "vector/bezier.hpp"
+#include "vector/hair_curves.hpp"
+
+namespace wisp::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Flat SVGs: each wisp's front region with its inside colours as a gradient from root to tip,
+// read off its outline's stops: on the highlight side for Faraj's colour point (where the
+// highlight is), averaged over both sides for lit shading (the light across the wisp is lost).
+std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
+                                     const vector::WispArrangement& arrangement,
+                                     const std::vector<diffusion::DiffusionCurve>& curves,
+                                     const std::vector<int>& outline_of,
+                                     const vector::HairStyle& style) {
+  constexpr int kStops = 16;
+  const bool lit = style.shading.model == vector::ShadingModel::Lit;
+  std::vector<FlatRegion> out;
+  for (size_t w = 0; w < wisps.size() && w < arrangement.front_regions.size(); ++w) {
+    const int c = outline_of[w];
+    if (arrangement.front_regions[w].polygons.empty() || c < 0) continue;
+    const vector::Wisp& wisp = wisps[w];
+    const std::vector<diffusion::ColorStop>& inside = curves[c].left;
+    FlatRegion r;
+    r.area = arrangement.front_regions[w];
+    r.from = wisp.centre.points.front();
+    r.to = wisp.centre.points.back();
+    std::vector<double> ts;
+    for (int k = 0; k <= kStops; ++k) ts.push_back(double(k) / kStops);
+    if (!lit) {  // the colour point's own places, so the highlight peak is not missed
+      const double a = style.highlight_along, h = 0.5 * style.highlight_spread;
+      for (double t : {a - h, a, a + h}) ts.push_back(std::clamp(t, 0.0, 1.0));
+      std::sort(ts.begin(), ts.end());
+    }
+    for (double t : ts) {
+      const auto colour = [&](bool left) {
+        return diffusion::color_at(inside, vector::outline_parameter(wisp, t, left));
+      };
+      const diffusion::Color col = lit ? diffusion::Color(0.5f * (colour(true) + colour(false)))
+                                       : colour(style.highlight_on_left);
+      r.stops.push_back({t, col});
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+// A fitted ink curve as a picture stroke; its flattening (for tools that draw polylines) at the
+// cubics' ends and thirds.
+InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
+  InkStroke s;
+  s.color = style.color;
+  s.closed = c.closed;
+  s.curve = c.points;
+  s.curve_width = c.width;
+  const int k = int(c.points.size() - 1) / 3;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double u = j / 3.0, sp = (i + u) / k;
+      const vector::Cubic q{c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2],
+                            c.points[3 * i + 3]};
+      s.points.push_back(vector::eval(q, u));
+      s.width.push_back(vector::width_at(c.width, sp));
+    }
+  if (!c.closed) {
+    s.points.push_back(c.points.back());
+    s.width.push_back(vector::width_at(c.width, 1.0));
+  }
+  return s;
+}
+
+}  // namespace
+
+FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
+                         std::vector<vector::Occluder> occluders, const FrameSetup& setup,
+                         const std::vector<float>* warm_start) {
+  const auto t_start = Clock::now();
+  FrameResult r;
+  const int W = frame.width, H = frame.height;
+
+  auto t0 = Clock::now();
+  vector::WispStyle style = setup.style.geometry;
+  style.trim_hidden = occluders.empty();
+  r.wisps = vector::build_wisps(frame, style);
+  r.time.wisps = ms_since(t0);
+
+  t0 = Clock::now();
+  vector::ArrangementOptions arr;
+  arr.view = vector::image_rect(W, H);
+  // Curves inside wisps are clipped to the arrangement's faces.
+  arr.debug_view = setup.debug_view || vector::needs_visible_regions(setup.style);
+  arr.front_regions = setup.flat_regions;
+  arr.occluders = std::move(occluders);
+  r.arrangement = vector::build_arrangement(r.wisps, arr);
+  r.time.arrangement = ms_since(t0);
+
+  t0 = Clock::now();
+  vector::HairCurves hc = vector::shade_hair(frame, r.wisps, r.arrangement, setup.style);
+  r.curves = std::move(hc.curves);
+  r.curve_stats = hc.stats;
+  r.time.curves = ms_since(t0);
+
+  FramePicture& pic = r.picture;
+  pic.width = W;
+  pic.height = H;
+  pic.background = setup.background;
+  pic.body = std::move(body);
+  pic.mask = r.arrangement.mask;
+  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back(w.outline.points);
+  if (setup.flat_regions)
+    pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
+  if (setup.style.ink.enabled()) {
+    t0 = Clock::now();
+    r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);
+    for (const vector::InkCurve& c : r.ink) pic.ink.push_back(ink_stroke(c, setup.style.ink));
+    r.time.ink = ms_since(t0);
+  }
+
+  if (!r.curves.empty()) {
+    t0 = Clock::now();
+    r.problem = diffusion::rasterize(r.curves, W, H);
+    r.time.rasterize = ms_since(t0);
+    t0 = Clock::now();
+    const bool warm = warm_start && warm_start->size() == r.problem.pixel_count() * 3;
+    diffusion::Solution s =
+        diffusion::solve_multigrid(r.problem, setup.solver, warm ? warm_start : nullptr);
+    r.time.solve = ms_since(t0);
+    r.solve = s.stats;
+    pic.hair = {W, H, s.planes};
+    r.solution = std::move(s.planes);
+  }
+  if (!setup.debug_view) r.arrangement.view = {};
+  r.time.total = ms_since(t_start);
+  return r;
+}
+
+}  // namespace wisp::render

@@ -1,0 +1,58 @@
+// One frame of the main job, from projected strands to a finished picture:
+//   wisps (vector/) -> arrangement: visibility, hair mask (vector/, CGAL) -> diffusion curves
+//   in the style: the visible outline pieces, lit by the frame's light, and curves inside the
+//   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
+//   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
+//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes).
+// Used by `wisp render` for every frame and by the inspector for the one it shows.
+#pragma once
+
+#include <vector>
+
+#include "apps/render/picture.hpp"
+#include "diffusion/multigrid.hpp"
+#include "sim/projected.hpp"
+#include "vector/arrangement.hpp"
+#include "vector/hair_curves.hpp"
+#include "vector/hair_style.hpp"
+#include "vector/ink_strokes.hpp"
+
+namespace wisp::render {
+
+struct FrameSetup {
+  vector::HairStyle style;
+  diffusion::SolverOptions solver;
+  Rgb background{1, 1, 1};
+  bool debug_view = false;    // keep the arrangement's debug view (inspector)
+  bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
+};
+
+// Milliseconds per stage.
+struct FrameTimings {
+  double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
+  double ink = 0;  // fitting the ink strokes
+};
+
+struct FrameResult {
+  FramePicture picture;
+  std::vector<vector::Wisp> wisps;
+  vector::WispArrangement arrangement;
+  std::vector<diffusion::DiffusionCurve> curves;  // outlines first, then curves inside wisps
+  vector::HairCurveStats curve_stats;             // how many of each kind
+  std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
+  diffusion::Problem problem;                     // the rasterized constraints (inspector)
+  diffusion::SolveStats solve;
+  std::vector<float> solution;  // the solved RGB planes: the next frame's warm start
+  FrameTimings time;
+};
+
+// `body`: the head and body drawn under the hair; `occluders`: the same as occluders of the hair
+// (apps/body_occluders.hpp). With occluders every strand becomes a whole wisp and the
+// arrangement cuts it along their silhouettes, so hair slides behind the head continuously
+// instead of losing whole samples; without, wisps keep the samples the camera marked visible.
+// `warm_start`: the previous frame's solution (same size) or null.
+FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
+                         std::vector<vector::Occluder> occluders, const FrameSetup& setup,
+                         const std::vector<float>* warm_start);
+
+}  // namespace wisp::render

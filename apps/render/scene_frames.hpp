@@ -1,0 +1,59 @@
+// From a scene file to the frames the renderer draws: the scene (with an optional image size
+// override), its animation (simulated now, or read back from a saved .wsim), every frame projected
+// in order (the occlusion hysteresis follows the frames, so frame k projects the same whichever
+// frame a tool asks for first), and per frame the body under the hair and as occluder of it. Shared
+// by `wisp render` and `wisp-inspect`, so the inspector shows exactly the frames the renderer
+// writes.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/render/picture.hpp"
+#include "apps/render/render_pipeline.hpp"
+#include "io/scene.hpp"
+#include "sim/animation.hpp"
+#include "sim/body.hpp"
+#include "sim/projected.hpp"
+
+namespace wisp::render {
+
+struct SceneFramesOptions {
+  std::filesystem::path anim;  // a saved animation (.wsim) to read; empty: simulate the scene
+  int width = 0, height = 0;   // > 0: render at this size instead of the camera's
+  // Called while simulating (done, total), as sim::simulate's progress.
+  std::function<void(int done, int total)> sim_progress;
+};
+
+struct SceneFrames {
+  io::Scene scene;  // camera size overridden when asked
+  sim::Animation anim;
+  std::vector<sim::ProjectedFrame> projected;  // one per animation frame
+  std::shared_ptr<const sim::BodyModel> body;  // what render.body draws; null: nothing
+
+  int frame_count() const { return int(projected.size()); }
+};
+
+// Loads, simulates or reads, and projects. Errors are exceptions naming the file and field.
+SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
+                              const SceneFramesOptions& options);
+
+// The renderer's settings for a scene (style, solver tolerance, background).
+FrameSetup frame_setup(const io::Scene& scene);
+
+// The body under the hair in frame k as flat polygons, back to front, in two skin tones (a toon
+// look): lit and shadowed, split along the smooth iso-line of the light's half-Lambert shade.
+std::vector<BodyPolygon> frame_body(const SceneFrames& frames, int k);
+
+// The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
+// the scene draws no body.
+std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k);
+
+// "WxH" -> (W, H), each side 1 to 16384. Throws std::invalid_argument naming `option`.
+std::pair<int, int> parse_size(const std::string& option, const std::string& text);
+
+}  // namespace wisp::render

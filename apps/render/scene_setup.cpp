@@ -1,0 +1,82 @@
+// load_sim_setup: turns a scene into the simulator's input, reading the files it names (head
+// mesh, strand file); body_params and projector_options: what the renderer draws and projects.
+// See scene_setup.hpp.
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "apps/render/scene_setup.hpp"
+#include "io/hair_file.hpp"
+#include "io/hair_json.hpp"
+#include "io/scene_mesh.hpp"
+#include "sim/hair_model.hpp"
+
+namespace wisp::render {
+
+sim::SimSetup load_sim_setup(const io::Scene& scene) {
+  const std::string file = scene.path.string();
+  sim::TriangleMesh mesh;
+  if (scene.head.shape == "mesh") {
+    try {
+      mesh = io::read_obj(scene.head.mesh);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(file + ": head.mesh: " + e.what());
+    }
+    for (auto& v : mesh.vertices) v = v * scene.head.mesh_scale + scene.head.mesh_offset;
+  }
+  try {
+    if (scene.hair.source == "procedural")
+      return sim::make_setup(scene.head, scene.hair, scene.motion, scene.sim, mesh);
+
+    sim::SimSetup setup = sim::make_base_setup(scene.head, scene.motion, scene.sim, mesh);
+    std::vector<sim::Polyline> strands;
+    try {
+      strands = scene.hair.source == "json" ? io::read_strands_json(scene.hair.file)
+                                            : io::read_hair_file(scene.hair.file).strands;
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("hair.file: ") + e.what());
+    }
+    // File coordinates to head-local metres; strands of a single point are dropped.
+    const sim::HairParams& h = scene.hair;
+    std::vector<sim::Polyline> usable;
+    for (auto& s : strands) {
+      if (s.size() < 2) continue;
+      for (auto& p : s) {
+        p *= h.file_scale;
+        if (h.file_z_up) p = Eigen::Vector3d(p.x(), p.z(), -p.y());
+        p += h.file_offset;
+      }
+      usable.push_back(std::move(s));
+    }
+    if (usable.empty())
+      throw std::runtime_error("hair.file: " + h.file.string() + " has no strand with 2 points");
+    const sim::HeadShape head(setup.head);
+    for (int i : sim::select_guides(usable, h.count)) {
+      sim::Polyline guide = h.segments > 0 ? sim::resample(usable[i], h.segments) : usable[i];
+      sim::clear_head(guide, head, scene.sim.collision_margin + 0.002);
+      setup.rest.push_back(std::move(guide));
+    }
+    return setup;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(file + ": " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(file + ": " + e.what());
+  }
+}
+
+sim::BodyParams body_params(const io::Scene& scene) {
+  sim::BodyParams body = sim::body_params(scene.head);
+  body.head = scene.render.body;
+  body.neck = body.torso = scene.render.body && scene.render.torso;
+  return body;
+}
+
+sim::ProjectorOptions projector_options(const io::Scene& scene) {
+  sim::ProjectorOptions options;
+  options.light_dir = scene.light_dir;
+  const sim::BodyParams body = body_params(scene);
+  if (body.neck || body.torso) options.body = std::make_shared<const sim::BodyParams>(body);
+  return options;
+}
+
+}  // namespace wisp::render
