@@ -3,7 +3,7 @@ BUILD   ?= build
 JOBS    ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-asan bench format clean
+.PHONY: all deps configure build demo test test-asan bench format format-check clean
 
 all: build
 
@@ -30,7 +30,7 @@ demo: build
 	@echo "demo: frames, preview.mp4, contact.png and stats.json in $(CURDIR)/out/demo/"
 	@echo "demo: diffusion-curve drawings in $(CURDIR)/out/demo/drawings/"
 
-test: build
+test: build format-check
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # Same suite under AddressSanitizer + UndefinedBehaviorSanitizer, in its own build folder.
@@ -44,8 +44,16 @@ test-asan: deps
 bench: build
 	$(BUILD)/bin/wisp-bench all
 
+# Every C++ file tracked or new (not ignored) in the repo, formatted by .clang-format.
+SOURCES = $(shell git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp')
+
 format:
-	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+	clang-format -i $(SOURCES)
+
+# Fails, naming the files, when any would change under `make format`.
+format-check: deps
+	@clang-format --dry-run --Werror $(SOURCES) 2>&1 | grep -o '^[^:]*\.[ch]pp' | sort -u \
+	  | sed 's/^/format-check: needs clang-format: /' | grep . && exit 1 || true
 
 clean:
 	rm -rf $(BUILD) build-asan out
