@@ -17,7 +17,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 Image render_drawing(const Drawing& drawing, int width, int height, const SolverOptions& solver,
-                     RenderStats* stats) {
+                     RenderStats* stats, bool antialias) {
   if (drawing.width <= 0 || drawing.height <= 0)
     throw std::invalid_argument("drawing size must be positive");
   RenderStats local;
@@ -44,6 +44,12 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   Solution solution = solve_multigrid(problem, solver);
   st.solver = solution.stats;
   st.solve_ms = ms_since(t0);
+
+  if (antialias) {
+    t0 = std::chrono::steady_clock::now();
+    st.antialiased_pixels = diffusion::antialias(curves, width, height, solution.planes).pixels;
+    st.antialias_ms = ms_since(t0);
+  }
 
   Image image{width, height, {}};
   const size_t n = size_t(width) * size_t(height);

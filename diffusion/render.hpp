@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "diffusion/antialias.hpp"
 #include "diffusion/diffusion_curve.hpp"
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
@@ -13,8 +14,10 @@ namespace wisp::diffusion {
 struct RenderStats {
   double rasterize_ms = 0;
   double solve_ms = 0;  // multigrid setup + solve
+  double antialias_ms = 0;
   double blur_ms = 0;
   bool blurred = false;
+  long antialiased_pixels = 0;  // pixels re-sampled along sharp curves (antialias.hpp)
   SolveStats solver;
 };
 
@@ -26,8 +29,11 @@ struct Image {
 };
 
 // Curves in drawing coordinates ([0,drawing.width]x[0,drawing.height]) are scaled to a
-// width x height image. Throws std::invalid_argument for an invalid curve or size.
+// width x height image. With `antialias`, pixels that sharp curves cross mix both sides' colours
+// by the area each covers (antialias.hpp), before the reblur. Throws std::invalid_argument for an
+// invalid curve or size.
 Image render_drawing(const Drawing& drawing, int width, int height,
-                     const SolverOptions& solver = {}, RenderStats* stats = nullptr);
+                     const SolverOptions& solver = {}, RenderStats* stats = nullptr,
+                     bool antialias = true);
 
 }  // namespace wisp::diffusion

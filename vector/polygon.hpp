@@ -1,9 +1,11 @@
-// Plain polygon helpers shared by the arrangement (mask rings), the style (chart polygons) and the
-// inspector (picking): a ring is a closed polygon given by its vertices, the last joined to the
-// first.
+// Plain polygon helpers shared by the arrangement (mask rings), the style (chart polygons), the
+// renderer (which pixels the hair mask holds) and the inspector (picking, face fills): a ring is a
+// closed polygon given by its vertices, the last joined to the first.
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace wisp::vector {
@@ -27,6 +29,34 @@ inline double signed_area(const std::vector<Eigen::Vector2d>& ring) {
   for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
     a += ring[j].x() * ring[i].y() - ring[i].x() * ring[j].y();
   return 0.5 * a;
+}
+
+// Sets pixels[y * width + x] = value for every pixel whose centre (x + 0.5, y + 0.5) lies inside
+// `rings` (even-odd over all of them, so holes are rings too). Exact centre sampling, unlike a
+// rasterizer's non-anti-aliased fill, which may move thin slivers by up to half a pixel.
+template <class T>
+void fill_centres(std::vector<T>& pixels, int width, int height,
+                  const std::vector<std::vector<Eigen::Vector2d>>& rings, T value) {
+  double y_min = height, y_max = 0;
+  for (const auto& r : rings)
+    for (const Eigen::Vector2d& p : r)
+      y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+  std::vector<double> xs;
+  for (int y = std::max(0, int(std::floor(y_min))); y < std::min(height, int(y_max) + 1); ++y) {
+    const double yc = y + 0.5;
+    xs.clear();
+    for (const auto& r : rings)
+      for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+        if ((r[i].y() > yc) != (r[j].y() > yc))
+          xs.push_back(r[j].x() + (yc - r[j].y()) * (r[i].x() - r[j].x()) / (r[i].y() - r[j].y()));
+    std::sort(xs.begin(), xs.end());
+    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+      // Pixels x with x + 0.5 in [xs[k], xs[k+1]).
+      const int x0 = std::max(0, int(std::ceil(xs[k] - 0.5)));
+      const int x1 = std::min(width, int(std::ceil(xs[k + 1] - 0.5)));
+      for (int x = x0; x < x1; ++x) pixels[size_t(y) * width + x] = value;
+    }
+  }
 }
 
 }  // namespace wisp::vector

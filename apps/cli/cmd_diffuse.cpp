@@ -23,6 +23,7 @@ struct DiffuseArgs {
   double scale = 0;
   double tolerance = 1e-5;
   int threads = 0;
+  bool no_antialias = false;
 };
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -75,7 +76,7 @@ void run_diffuse(const DiffuseArgs& a) {
   solver.tolerance = a.tolerance;
   diffusion::RenderStats st;
   const diffusion::Image image =
-      diffusion::render_drawing(file.drawing, width, height, solver, &st);
+      diffusion::render_drawing(file.drawing, width, height, solver, &st, !a.no_antialias);
   if (!st.solver.converged)
     std::fprintf(stderr,
                  "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
@@ -94,9 +95,10 @@ void run_diffuse(const DiffuseArgs& a) {
     j["height"] = height;
     j["curves"] = file.drawing.curves.size();
     j["warnings"] = file.warnings;
-    j["times_ms"] = {{"read", read_ms},      {"rasterize", st.rasterize_ms},
-                     {"solve", st.solve_ms}, {"blur", st.blur_ms},
-                     {"write", write_ms},    {"total", ms_since(t_start)}};
+    j["times_ms"] = {{"read", read_ms},           {"rasterize", st.rasterize_ms},
+                     {"solve", st.solve_ms},      {"antialias", st.antialias_ms},
+                     {"blur", st.blur_ms},        {"write", write_ms},
+                     {"total", ms_since(t_start)}};
     j["solver"] = {{"levels", st.solver.levels},
                    {"cycles", st.solver.cycles},
                    {"setup_ms", st.solver.setup_ms},
@@ -106,6 +108,7 @@ void run_diffuse(const DiffuseArgs& a) {
                    {"converged", st.solver.converged},
                    {"floating_pixels", st.solver.floating_pixels}};
     j["blurred"] = st.blurred;
+    j["antialiased_pixels"] = st.antialiased_pixels;
     io::write_text_atomically(a.stats, j.dump(2) + "\n");
   }
 }
@@ -126,6 +129,9 @@ void add_diffuse_command(CLI::App& app) {
   cmd->add_option("--xml", args->xml, "Also write the drawing as SceneXML (a format conversion)");
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the solve (default 1e-5)")
       ->check(CLI::Range(1e-12, 1e-1));
+  cmd->add_flag("--no-antialias", args->no_antialias,
+                "Keep each pixel's solved colour along sharp curves (today's output of other "
+                "diffusion-curve renderers, for comparison)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 256));
   cmd->callback([args] { run_diffuse(*args); });

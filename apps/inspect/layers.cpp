@@ -1,4 +1,4 @@
-// Drawing the inspector's layers with Cairo (see inspect_layers.hpp).
+// Drawing the inspector's layers with Cairo (see layers.hpp).
 #include "apps/inspect/layers.hpp"
 
 #include <cairo.h>
@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
+
+#include "vector/polygon.hpp"
 
 namespace wisp::inspect {
 namespace {
@@ -90,32 +92,6 @@ void paint_raster(cairo_t* cr, std::vector<std::uint32_t>& pixels, int width, in
   cairo_restore(cr);
 }
 
-// Fills, in `pixels` (width x height, row-major), the pixels whose centre lies inside `rings`
-// (even-odd) with `value`. Exact centre sampling: Cairo's non-anti-aliased fill is not (it moves
-// sliver faces by up to half a pixel), and the faces layer promises one colour per face.
-void fill_centres(std::vector<std::uint32_t>& pixels, int width, int height,
-                  const std::vector<std::vector<Vec2>>& rings, std::uint32_t value) {
-  double y_min = height, y_max = 0;
-  for (const auto& r : rings)
-    for (const Vec2& p : r) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
-  std::vector<double> xs;
-  for (int y = std::max(0, int(std::floor(y_min))); y < std::min(height, int(y_max) + 1); ++y) {
-    const double yc = y + 0.5;
-    xs.clear();
-    for (const auto& r : rings)
-      for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-        if ((r[i].y() > yc) != (r[j].y() > yc))
-          xs.push_back(r[j].x() + (yc - r[j].y()) * (r[i].x() - r[j].x()) / (r[i].y() - r[j].y()));
-    std::sort(xs.begin(), xs.end());
-    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-      // Pixels x with x + 0.5 in [xs[k], xs[k+1]).
-      const int x0 = std::max(0, int(std::ceil(xs[k] - 0.5)));
-      const int x1 = std::min(width, int(std::ceil(xs[k + 1] - 0.5)));
-      for (int x = x0; x < x1; ++x) pixels[size_t(y) * width + x] = value;
-    }
-  }
-}
-
 // Covered faces inside the view, each filled (centre-sampled, not anti-aliased) with color(face,
 // its number among those faces), on the canvas under the view.
 template <class ColorOf>
@@ -134,8 +110,8 @@ void paint_faces(cairo_t* cr, const vector::ArrangementView& view, const ViewTra
     for (auto& r : rings)
       for (Vec2& p : r) p = t.to_canvas(p);
     const Rgb8 c = color(f, number++);
-    fill_centres(pixels, width, height, rings,
-                 0xff000000u | std::uint32_t(c[0]) << 16 | std::uint32_t(c[1]) << 8 | c[2]);
+    vector::fill_centres(pixels, width, height, rings,
+                         0xff000000u | std::uint32_t(c[0]) << 16 | std::uint32_t(c[1]) << 8 | c[2]);
   }
   paint_raster(cr, pixels, width, height, ViewTransform{}, opacity);
 }

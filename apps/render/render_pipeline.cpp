@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <chrono>
 
+#include "diffusion/antialias.hpp"
 #include "diffusion/rasterize.hpp"
 #include "vector/bezier.hpp"
 #include "vector/hair_curves.hpp"
+#include "vector/polygon.hpp"
 
 namespace wisp::render {
 namespace {
@@ -80,6 +82,20 @@ InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
   return s;
 }
 
+// Mixes the two sides' colours in every hair pixel that a visible curve crosses, by area; pixels
+// outside the hair mask do not count, since the mask clips the hair image with its own coverage.
+diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionCurve>& curves,
+                                         const vector::HairMask& mask, diffusion::Image& hair) {
+  std::vector<std::uint8_t> region(size_t(hair.width) * hair.height, 0);
+  std::vector<std::vector<Eigen::Vector2d>> rings;
+  for (const vector::MaskPolygon& m : mask.polygons) {
+    rings.push_back(m.outer);
+    rings.insert(rings.end(), m.holes.begin(), m.holes.end());
+  }
+  vector::fill_centres(region, hair.width, hair.height, rings, std::uint8_t(1));
+  return diffusion::antialias(curves, hair.width, hair.height, hair.planes, &region);
+}
+
 }  // namespace
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
@@ -138,7 +154,12 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     pic.hair = {W, H, s.planes};
-    r.solution = std::move(s.planes);
+    r.solution = std::move(s.planes);  // the next frame's warm start: the plain solve
+    if (setup.antialias) {
+      t0 = Clock::now();
+      r.antialias = antialias_hair(r.curves, pic.mask, pic.hair);
+      r.time.antialias = ms_since(t0);
+    }
   }
   if (!setup.debug_view) r.arrangement.view = {};
   r.time.total = ms_since(t_start);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/render/picture.hpp"
+#include "diffusion/antialias.hpp"
 #include "diffusion/multigrid.hpp"
 #include "sim/projected.hpp"
 #include "vector/arrangement.hpp"
@@ -25,12 +26,14 @@ struct FrameSetup {
   Rgb background{1, 1, 1};
   bool debug_view = false;    // keep the arrangement's debug view (inspector)
   bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
+  bool antialias = true;      // mix both sides' colours where visible curves cross pixels
 };
 
 // Milliseconds per stage.
 struct FrameTimings {
   double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
-  double ink = 0;  // fitting the ink strokes
+  double ink = 0;        // fitting the ink strokes
+  double antialias = 0;  // re-sampling the pixels that visible curves cross
 };
 
 struct FrameResult {
@@ -42,6 +45,7 @@ struct FrameResult {
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
   diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
+  diffusion::AntialiasStats antialias;
   std::vector<float> solution;  // the solved RGB planes: the next frame's warm start
   FrameTimings time;
 };

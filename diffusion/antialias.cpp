@@ -1,0 +1,256 @@
+// Anti-aliasing of solved images by sub-samples that reach pixel centres (see antialias.hpp).
+//
+// The active curves are flattened into segments and binned into the pixels they pass through
+// (a grid walk, so long straight segments cost their length, not their bounding box). A sub-sample
+// of pixel p only ever looks at the centres of p and its eight neighbours, and the straight path
+// to any of them stays inside their 3 x 3 block, so the segments binned in that block are all
+// that can separate them. Pixels are independent: rows run in parallel and the result does not
+// depend on the thread count.
+#include "diffusion/antialias.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "diffusion/bezier.hpp"
+
+namespace wisp::diffusion {
+namespace {
+
+using Eigen::Vector2d;
+
+// A piece of an active curve, with the curve's parameter at its two ends.
+struct Segment {
+  Vector2d a, b;
+  int curve;
+  double ta, tb;
+};
+
+double cross(const Vector2d& u, const Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+// The active parts of every curve as segments of its flattening (the rasterizer's polyline).
+std::vector<Segment> active_segments(const std::vector<DiffusionCurve>& curves, double tolerance) {
+  std::vector<Segment> out;
+  for (size_t c = 0; c < curves.size(); ++c) {
+    const DiffusionCurve& curve = curves[c];
+    const std::vector<PathSample> poly = flatten_path(curve.points, tolerance);
+    for (size_t k = 1; k < poly.size(); ++k) {
+      const PathSample &s0 = poly[k - 1], &s1 = poly[k];
+      if (curve.active.empty()) {
+        out.push_back({s0.p, s1.p, int(c), s0.t, s1.t});
+        continue;
+      }
+      // The parts of [s0.t, s1.t] inside active intervals; t is linear along the segment.
+      const double span = s1.t - s0.t;
+      for (const auto& [t0, t1] : curve.active) {
+        const double u0 = std::max(s0.t, t0), u1 = std::min(s1.t, t1);
+        if (u1 < u0 || (u1 == u0 && span > 0)) continue;
+        const double f0 = span > 0 ? (u0 - s0.t) / span : 0, f1 = span > 0 ? (u1 - s0.t) / span : 1;
+        out.push_back({s0.p + f0 * (s1.p - s0.p), s0.p + f1 * (s1.p - s0.p), int(c), u0, u1});
+      }
+    }
+  }
+  return out;
+}
+
+// Clips the segment a-b to the box [lo, hi]^2 (Liang-Barsky); false when nothing is left.
+bool clip(Vector2d& a, Vector2d& b, const Vector2d& lo, const Vector2d& hi) {
+  double t0 = 0, t1 = 1;
+  const Vector2d d = b - a;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0) {
+      if (a[axis] < lo[axis] || a[axis] > hi[axis]) return false;
+      continue;
+    }
+    double ta = (lo[axis] - a[axis]) / d[axis], tb = (hi[axis] - a[axis]) / d[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  const Vector2d a0 = a;
+  a = a0 + t0 * d;
+  b = a0 + t1 * d;
+  return true;
+}
+
+// Calls visit(x, y) for every pixel of the width x height grid that the segment passes through
+// (Amanatides and Woo's grid walk).
+template <class Visit>
+void pixels_along(Vector2d a, Vector2d b, int width, int height, Visit&& visit) {
+  if (!clip(a, b, Vector2d(0, 0), Vector2d(width, height))) return;
+  const auto cell = [](double v, int n) { return std::clamp(int(std::floor(v)), 0, n - 1); };
+  int x = cell(a.x(), width), y = cell(a.y(), height);
+  const int xe = cell(b.x(), width), ye = cell(b.y(), height);
+  const Vector2d d = b - a;
+  const int sx = d.x() > 0 ? 1 : -1, sy = d.y() > 0 ? 1 : -1;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double next_x = d.x() != 0 ? ((sx > 0 ? x + 1 : x) - a.x()) / d.x() : kInf;
+  double next_y = d.y() != 0 ? ((sy > 0 ? y + 1 : y) - a.y()) / d.y() : kInf;
+  const double step_x = d.x() != 0 ? sx / d.x() : kInf, step_y = d.y() != 0 ? sy / d.y() : kInf;
+  const int steps = std::abs(xe - x) + std::abs(ye - y);
+  for (int k = 0;; ++k) {
+    visit(x, y);
+    if (k == steps) break;
+    if (next_x < next_y) {
+      next_x += step_x;
+      x = std::clamp(x + sx, 0, width - 1);
+    } else {
+      next_y += step_y;
+      y = std::clamp(y + sy, 0, height - 1);
+    }
+  }
+}
+
+// Whether the closed segments p-q and a-b meet. Touching counts: a path through a curve's vertex
+// or along it is blocked, so nothing leaks through a joint of the polyline.
+bool meet(const Vector2d& p, const Vector2d& q, const Vector2d& a, const Vector2d& b) {
+  const double d1 = cross(b - a, p - a), d2 = cross(b - a, q - a);
+  const double d3 = cross(q - p, a - p), d4 = cross(q - p, b - p);
+  if ((d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0) || (d3 > 0 && d4 > 0) || (d3 < 0 && d4 < 0))
+    return false;
+  if (d1 == 0 && d2 == 0 && d3 == 0 && d4 == 0) {  // collinear: overlap of the projections
+    const Vector2d dir = (q - p).squaredNorm() > 0 ? Vector2d(q - p) : Vector2d(b - a);
+    const double p0 = dir.dot(p), p1 = dir.dot(q), a0 = dir.dot(a), a1 = dir.dot(b);
+    return std::max(std::min(p0, p1), std::min(a0, a1)) <=
+           std::min(std::max(p0, p1), std::max(a0, a1));
+  }
+  return true;
+}
+
+// Per pixel, the segments that pass through it (compressed rows: first[p] .. first[p+1]).
+struct SegmentBins {
+  std::vector<int> first, index;
+};
+
+SegmentBins bin_segments(const std::vector<Segment>& segments, int width, int height) {
+  SegmentBins bins;
+  bins.first.assign(size_t(width) * height + 1, 0);
+  for (const Segment& s : segments)
+    pixels_along(s.a, s.b, width, height,
+                 [&](int x, int y) { ++bins.first[size_t(y) * width + x + 1]; });
+  for (size_t i = 1; i < bins.first.size(); ++i) bins.first[i] += bins.first[i - 1];
+  bins.index.resize(bins.first.back());
+  std::vector<int> fill(bins.first.begin(), bins.first.end() - 1);
+  for (size_t k = 0; k < segments.size(); ++k)
+    pixels_along(segments[k].a, segments[k].b, width, height,
+                 [&](int x, int y) { bins.index[fill[size_t(y) * width + x]++] = int(k); });
+  return bins;
+}
+
+// The pixel's own centre and its eight neighbours' as offsets, nearest first from sub-sample s
+// (ties in a fixed order), for each of the n x n sub-sample positions.
+std::vector<std::array<std::array<int, 2>, 9>> neighbour_orders(int n) {
+  std::vector<std::array<std::array<int, 2>, 9>> orders(size_t(n) * n);
+  for (int sy = 0; sy < n; ++sy)
+    for (int sx = 0; sx < n; ++sx) {
+      const Vector2d q((sx + 0.5) / n, (sy + 0.5) / n);
+      std::array<std::array<int, 2>, 9>& o = orders[size_t(sy) * n + sx];
+      for (int k = 0; k < 9; ++k) o[k] = {k % 3 - 1, k / 3 - 1};
+      std::stable_sort(o.begin(), o.end(), [&](const auto& u, const auto& v) {
+        return (Vector2d(u[0] + 0.5, u[1] + 0.5) - q).squaredNorm() <
+               (Vector2d(v[0] + 0.5, v[1] + 0.5) - q).squaredNorm();
+      });
+    }
+  return orders;
+}
+
+}  // namespace
+
+AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
+                         std::vector<float>& planes, const std::vector<std::uint8_t>* region,
+                         const AntialiasOptions& options) {
+  const size_t n_pixels = size_t(width) * size_t(height);
+  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
+    throw std::invalid_argument("antialias: image planes do not match the size");
+  if (region && region->size() != n_pixels)
+    throw std::invalid_argument("antialias: region does not match the image size");
+  if (options.samples < 1 || options.samples > 16)
+    throw std::invalid_argument("antialias: samples must be 1 to 16");
+
+  AntialiasStats stats;
+  const std::vector<Segment> segments = active_segments(curves, options.flatten_tolerance);
+  stats.segments = long(segments.size());
+  if (segments.empty()) return stats;
+  const SegmentBins bins = bin_segments(segments, width, height);
+  const int n = options.samples;
+  const auto orders = neighbour_orders(n);
+  const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
+
+  std::vector<long> resampled(size_t(height), 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<int> local;
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t p = size_t(y) * width + x;
+        if (bins.first[p] == bins.first[p + 1]) continue;
+        // Every segment in the 3 x 3 block around p, once.
+        local.clear();
+        for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
+          for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
+            const size_t c = size_t(yy) * width + xx;
+            local.insert(local.end(), bins.index.begin() + bins.first[c],
+                         bins.index.begin() + bins.first[c + 1]);
+          }
+        std::sort(local.begin(), local.end());
+        local.erase(std::unique(local.begin(), local.end()), local.end());
+
+        Color sum = Color::Zero();
+        int count = 0;
+        for (int s = 0; s < n * n; ++s) {
+          const Vector2d q(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
+          bool reached = false;
+          for (const auto& [dx, dy] : orders[s]) {
+            const int cx = x + dx, cy = y + dy;
+            if (cx < 0 || cy < 0 || cx >= width || cy >= height) continue;
+            const Vector2d centre(cx + 0.5, cy + 0.5);
+            const bool blocked = std::any_of(local.begin(), local.end(), [&](int k) {
+              return meet(q, centre, segments[k].a, segments[k].b);
+            });
+            if (blocked) continue;
+            reached = true;
+            const size_t c = size_t(cy) * width + cx;
+            if (region && !(*region)[c]) break;  // outside the shown area: does not count
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += source[ch * n_pixels + c];
+            ++count;
+            break;
+          }
+          if (reached || (region && !(*region)[p])) continue;
+          // A sliver with no pixel centre: the side of the nearest curve that faces q.
+          double best = std::numeric_limits<double>::infinity();
+          const Segment* nearest = nullptr;
+          double along = 0;
+          for (int k : local) {
+            const Segment& g = segments[k];
+            const Vector2d d = g.b - g.a;
+            const double len2 = d.squaredNorm();
+            const double f = len2 > 0 ? std::clamp((q - g.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+            const double dist = (g.a + f * d - q).squaredNorm();
+            if (dist < best) best = dist, nearest = &g, along = f;
+          }
+          if (!nearest) continue;
+          const DiffusionCurve& c = curves[nearest->curve];
+          const bool left = cross(nearest->b - nearest->a, q - nearest->a) > 0;
+          if (c.gradient_only || (left ? c.left_boundary : c.right_boundary) != Boundary::Dirichlet)
+            continue;
+          sum +=
+              color_at(left ? c.left : c.right, nearest->ta + along * (nearest->tb - nearest->ta));
+          ++count;
+        }
+        ++resampled[y];
+        if (count == 0) continue;
+        for (int ch = 0; ch < 3; ++ch) planes[ch * n_pixels + p] = sum[ch] / count;
+      }
+  });
+  for (long r : resampled) stats.pixels += r;
+  return stats;
+}
+
+}  // namespace wisp::diffusion

@@ -1,0 +1,42 @@
+// Anti-aliasing of a solved diffusion-curve image, without solving at a higher resolution.
+//
+// The solve places every colour discontinuity (an active curve) between pixel centres, so a pixel
+// that a sharp curve crosses shows the colour of one side only: a one-pixel staircase along every
+// curve. Each such pixel is re-sampled instead: n x n sub-samples, each coloured from the nearest
+// pixel centre (among the pixel's own and its eight neighbours) that it reaches in a straight line
+// without crossing an active curve, and averaged. So each side of a curve contributes in
+// proportion to the area it covers in the pixel, with its own solved colour, and colours never
+// bleed across a curve. A sub-sample that reaches no centre (inside a feature thinner than the
+// pixel spacing, which holds no pixel centre) takes the colour of the nearest curve's side that
+// faces it. Curves are flattened exactly as the rasterizer flattens them, so the geometry is the
+// one the solve saw.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "diffusion/diffusion_curve.hpp"
+
+namespace wisp::diffusion {
+
+struct AntialiasOptions {
+  int samples = 4;                  // n: n x n sub-samples per crossed pixel, 1 to 16
+  double flatten_tolerance = 0.01;  // pixels; the rasterizer's default
+};
+
+struct AntialiasStats {
+  long pixels = 0;    // pixels re-sampled (crossed by an active curve)
+  long segments = 0;  // active polyline segments after flattening
+};
+
+// `planes`: the solved RGB image, three planes of width x height floats, changed in place.
+// `region`: optional, width x height, 0 for pixels outside the area the image will be shown in
+// (a mask that clips it later, with its own anti-aliased coverage): sub-samples that reach such a
+// pixel do not count, so a pixel on the region's edge takes the colour of its inside alone and
+// the clip supplies the coverage. Curves are in pixel coordinates and must be valid.
+AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
+                         std::vector<float>& planes,
+                         const std::vector<std::uint8_t>* region = nullptr,
+                         const AntialiasOptions& options = {});
+
+}  // namespace wisp::diffusion

@@ -1,0 +1,116 @@
+// antialias: pixels that sharp curves cross mix both sides' solved colours by the area each side
+// covers, colours never cross a curve, pixels no curve crosses keep their solved value, and a
+// region leaves the outside out.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "diffusion/antialias.hpp"
+#include "diffusion/render.hpp"
+
+using namespace wisp::diffusion;
+using Eigen::Vector2d;
+
+namespace {
+
+// A straight curve from a to b (evenly spaced control points) with one colour per side.
+DiffusionCurve line(Vector2d a, Vector2d b, Color left, Color right) {
+  DiffusionCurve c;
+  for (int k = 0; k <= 3; ++k) c.points.push_back(a + (b - a) * (k / 3.0));
+  c.left = {{0, left}};
+  c.right = {{0, right}};
+  return c;
+}
+
+Drawing drawing(int size, std::vector<DiffusionCurve> curves) {
+  Drawing d;
+  d.width = d.height = size;
+  d.curves = std::move(curves);
+  return d;
+}
+
+float red(const Image& im, int x, int y) {
+  return im.planes[size_t(y) * im.width + x];
+}
+
+const Color kWhite(1, 1, 1), kBlack(0, 0, 0);
+
+}  // namespace
+
+TEST_CASE("a pixel a straight edge crosses takes each side's colour by the area it covers",
+          "[antialias]") {
+  // Travelling down, the left side (-d.y, d.x) points to -x: white left of x = 10.25.
+  const Drawing d = drawing(32, {line({10.25, -1}, {10.25, 33}, kWhite, kBlack)});
+  const Image sharp = render_drawing(d, 32, 32, {}, nullptr, false);
+  RenderStats st;
+  const Image im = render_drawing(d, 32, 32, {}, &st, true);
+  CHECK(st.antialiased_pixels == 32);  // one column
+  for (int y = 0; y < 32; ++y) {
+    CHECK(red(sharp, 10, y) == Approx(0).margin(1e-4));  // the centre 10.5 is on the black side
+    CHECK(red(im, 10, y) == Approx(0.25).margin(1e-4));  // a quarter of the pixel is white
+    for (int x : {0, 9, 11, 31}) CHECK(red(im, x, y) == red(sharp, x, y));
+  }
+}
+
+TEST_CASE("along a slanted edge every pixel's mix is its covered area", "[antialias]") {
+  // y = 0.3 x + 5: white below it (travelling +x, the left side (-d.y, d.x) points to +y).
+  const Vector2d a(-1, 5 - 0.3), b(65, 5 + 0.3 * 65);
+  const Drawing d = drawing(64, {line(a, b, kWhite, kBlack)});
+  const Image im = render_drawing(d, 64, 64, {}, nullptr, true);
+  for (int x = 0; x < 64; ++x)
+    for (int y = 0; y < 64; ++y) {
+      // Exact white area of the pixel: the part below the line, column by column.
+      double area = 0;
+      const int kCols = 400;
+      for (int k = 0; k < kCols; ++k) {
+        const double line_y = 5 + 0.3 * (x + (k + 0.5) / kCols);
+        area += std::clamp(y + 1 - line_y, 0.0, 1.0) / kCols;
+      }
+      // 4 x 4 sub-samples resolve the area to within a row of them plus the slope's share.
+      INFO("pixel " << x << "," << y);
+      CHECK(red(im, x, y) == Approx(area).margin(0.3 / 4 + 1e-3));
+    }
+}
+
+TEST_CASE("colour does not leak across a curve into a thin feature", "[antialias]") {
+  // A white band 0.6 px wide between two curves holds no pixel centre; outside it is black.
+  // Each crossed pixel shows white in proportion to the band's area in it, never more.
+  const Drawing d = drawing(
+      16, {line({7.2, -1}, {7.2, 17}, kBlack, kWhite), line({7.8, -1}, {7.8, 17}, kWhite, kBlack)});
+  const Image im = render_drawing(d, 16, 16, {}, nullptr, true);
+  for (int y = 0; y < 16; ++y) {
+    CHECK(red(im, 7, y) == Approx(0.5).margin(1e-4));  // sub-samples 7.375 and 7.625 are white
+    CHECK(red(im, 6, y) == Approx(0).margin(1e-4));
+    CHECK(red(im, 8, y) == Approx(0).margin(1e-4));
+  }
+}
+
+TEST_CASE("sub-samples that reach pixels outside the region do not count", "[antialias]") {
+  const Drawing d = drawing(32, {line({10.25, -1}, {10.25, 33}, kWhite, kBlack)});
+  Image im = render_drawing(d, 32, 32, {}, nullptr, false);
+  std::vector<std::uint8_t> region(32 * 32, 1);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x <= 9; ++x) region[y * 32 + x] = 0;  // the white side is not shown
+  const AntialiasStats st = antialias(d.curves, 32, 32, im.planes, &region);
+  CHECK(st.pixels == 32);
+  for (int y = 0; y < 32; ++y) CHECK(red(im, 10, y) == Approx(0).margin(1e-4));  // black alone
+}
+
+TEST_CASE("hidden parts of a curve do not anti-alias", "[antialias]") {
+  DiffusionCurve c = line({10.25, -1}, {10.25, 33}, kWhite, kBlack);
+  c.active = {{0.0, 0.5}};  // the upper half only: y < 16
+  const Drawing d = drawing(32, {c});
+  const Image sharp = render_drawing(d, 32, 32, {}, nullptr, false);
+  const Image im = render_drawing(d, 32, 32, {}, nullptr, true);
+  CHECK(red(im, 10, 4) == Approx(0.25).margin(1e-4));
+  CHECK(red(im, 10, 28) == red(sharp, 10, 28));  // no curve there: left as solved
+}
+
+TEST_CASE("antialias refuses mismatched sizes", "[antialias]") {
+  std::vector<float> planes(3 * 4 * 4, 0.0f);
+  CHECK_THROWS_AS(antialias({}, 5, 4, planes), std::invalid_argument);
+  const std::vector<std::uint8_t> region(3, 1);
+  CHECK_THROWS_AS(antialias({}, 4, 4, planes, &region), std::invalid_argument);
+  AntialiasOptions o;
+  o.samples = 0;
+  CHECK_THROWS_AS(antialias({}, 4, 4, planes, nullptr, o), std::invalid_argument);
+}
