@@ -12,5 +12,6 @@ int run_solver(const std::vector<std::string>& args);
 int run_arrangement(const std::vector<std::string>& args);
 int run_sim(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
+int run_quality(const std::vector<std::string>& args);
 
 }  // namespace wisp::bench

@@ -11,10 +11,9 @@
 int main(int argc, char** argv) {
   using Bench = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Bench> benches = {
-      {"solver", wisp::bench::run_solver},
-      {"arrangement", wisp::bench::run_arrangement},
-      {"sim", wisp::bench::run_sim},
-      {"render", wisp::bench::run_render},
+      {"solver", wisp::bench::run_solver},   {"arrangement", wisp::bench::run_arrangement},
+      {"sim", wisp::bench::run_sim},         {"render", wisp::bench::run_render},
+      {"quality", wisp::bench::run_quality},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");
