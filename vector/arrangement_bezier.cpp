@@ -7,9 +7,9 @@
 #include <CGAL/CORE_algebraic_number_traits.h>
 #include <CGAL/Cartesian.h>
 
-#include <chrono>
 #include <stdexcept>
 
+#include "diffusion/timer.hpp"
 #include "vector/arrangement.hpp"
 
 namespace wisp::vector {
@@ -31,7 +31,7 @@ RatPoint rational(const Eigen::Vector2d& p) {
 }  // namespace
 
 ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = diffusion::Clock::now();
   std::vector<BezierTraits::Curve_2> curves;
   for (const Wisp& w : wisps) {
     for (int i = 0; i < w.outline.cubic_count(); ++i) {
@@ -56,7 +56,7 @@ ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps) {
   t.vertices = long(arr.number_of_vertices());
   t.edges = long(arr.number_of_edges());
   t.faces = long(arr.number_of_faces());
-  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  t.ms = diffusion::ms_since(t0);
   return t;
 }
 

@@ -2,19 +2,17 @@
 #include "apps/render/render_pipeline.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "diffusion/rasterize.hpp"
+#include "diffusion/timer.hpp"
 #include "vector/bezier.hpp"
 #include "vector/hair_curves.hpp"
 
 namespace wisp::render {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using diffusion::Clock;
+using diffusion::ms_since;
 
 // Flat SVGs: each wisp's front region with its inside colours as a gradient from root to tip,
 // read off its outline's stops: on the highlight side for Faraj's colour point (where the
