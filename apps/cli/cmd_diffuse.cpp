@@ -5,10 +5,11 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <stdexcept>
+#include <tuple>
 
 #include "apps/cli/commands.hpp"
+#include "apps/render/scene_frames.hpp"
 #include "diffusion/render.hpp"
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
@@ -40,16 +41,7 @@ void run_diffuse(const DiffuseArgs& a) {
 
   // Arguments are checked before any work, so that their errors come first and alone.
   int width = 0, height = 0;
-  if (!a.size.empty()) {
-    std::smatch m;
-    if (!std::regex_match(a.size, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
-      throw std::invalid_argument("--size: expected WxH, for example 512x512, got '" + a.size +
-                                  "'");
-    width = std::stoi(m[1]);
-    height = std::stoi(m[2]);
-    check_side(width, "--size");
-    check_side(height, "--size");
-  }
+  if (!a.size.empty()) std::tie(width, height) = render::parse_size("--size", a.size);
 
   auto t0 = diffusion::Clock::now();
   const io::DrawingFile file = io::read_drawing_xml(a.input);
