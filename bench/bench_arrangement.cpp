@@ -161,7 +161,7 @@ int run_arrangement(const std::vector<std::string>& args) {
         return v[v.size() / 2];
       };
       long cubics = 0;
-      for (const auto& w : wisps) cubics += w.outline.cubic_count();
+      for (const auto& w : wisps) cubics += w.outline.piece_count();
       std::string exact = "null";
       if (!exact_gave_up) {
         vector::ArrangementOptions unclipped;

@@ -34,8 +34,8 @@ ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps) {
   const auto t0 = diffusion::Clock::now();
   std::vector<BezierTraits::Curve_2> curves;
   for (const Wisp& w : wisps) {
-    for (int i = 0; i < w.outline.cubic_count(); ++i) {
-      const Cubic c = w.outline.cubic(i);
+    for (int i = 0; i < w.outline.piece_count(); ++i) {
+      const diffusion::Cubic c = w.outline.piece(i);
       if (c[0] == c[3] && c[1] == c[0] && c[2] == c[0]) continue;
       // Caps are straight: give them as degree 1 (collinear cubics are a fragile case).
       std::vector<RatPoint> control;

@@ -5,7 +5,6 @@
 
 #include "diffusion/rasterize.hpp"
 #include "diffusion/timer.hpp"
-#include "vector/bezier.hpp"
 #include "vector/hair_curves.hpp"
 
 namespace wisp::render {
@@ -59,19 +58,19 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
   InkStroke s;
   s.color = style.color;
-  s.closed = c.closed;
-  s.curve = c.points;
+  s.closed = c.closed();
+  s.curve.points = c.points;
   s.curve_width = c.width;
-  const int k = int(c.points.size() - 1) / 3;
-  for (int i = 0; i < k; ++i)
+  const int k = c.piece_count();
+  for (int i = 0; i < k; ++i) {
+    const diffusion::Cubic q = c.piece(i);
     for (int j = 0; j < 3; ++j) {
       const double u = j / 3.0, sp = (i + u) / k;
-      const vector::Cubic q{c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2],
-                            c.points[3 * i + 3]};
-      s.points.push_back(vector::eval(q, u));
+      s.points.push_back(diffusion::eval(q, u));
       s.width.push_back(vector::width_at(c.width, sp));
     }
-  if (!c.closed) {
+  }
+  if (!s.closed) {
     s.points.push_back(c.points.back());
     s.width.push_back(vector::width_at(c.width, 1.0));
   }
@@ -115,7 +114,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
   pic.background = setup.background;
   pic.body = std::move(body);
   pic.mask = r.arrangement.mask;
-  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back(w.outline.points);
+  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.outline.points});
   if (setup.flat_regions)
     pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
   if (setup.style.ink.enabled()) {
