@@ -7,9 +7,8 @@
 
 namespace wisp::render {
 
-using vector::width_at;
-
 std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step) {
+  using vector::width_at;
   std::vector<InkPiece> out;
   const int k = stroke.curve.piece_count();
   if (k == 0 || !(step > 0)) return out;

@@ -36,6 +36,7 @@ void polygon_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
   cairo_close_path(cr);
 }
 
+// A Bezier path with at least one piece as the current Cairo path.
 void bezier_path(cairo_t* cr, const diffusion::BezierPath& path) {
   cairo_move_to(cr, path.points[0].x(), path.points[0].y());
   for (int i = 0; i < path.piece_count(); ++i) {

@@ -39,7 +39,7 @@ void ring_path(std::ostringstream& o, const std::vector<Eigen::Vector2d>& ring) 
   if (!ring.empty()) o << " Z";
 }
 
-// Path data "M x y C ... C ..." of a Bezier path.
+// Path data "M x y C ... C ..." of a Bezier path with at least one piece.
 std::string bezier_path(const diffusion::BezierPath& path) {
   std::ostringstream o;
   o << 'M' << num(path.points[0].x()) << ' ' << num(path.points[0].y());
