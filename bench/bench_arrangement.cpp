@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -21,6 +20,7 @@
 #include <vector>
 
 #include "bench/benches.hpp"
+#include "diffusion/timer.hpp"
 #include "vector/arrangement.hpp"
 #include "vector/wisp.hpp"
 
@@ -79,10 +79,6 @@ sim::ProjectedFrame bench_frame(int count, bool mixed, std::uint32_t seed) {
   return f;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // Runs the exact Bezier arrangement in a child process; "null" on timeout or failure.
 std::string exact_in_child(const std::vector<vector::Wisp>& wisps, double timeout_s) {
   int fd[2];
@@ -103,10 +99,10 @@ std::string exact_in_child(const std::vector<vector::Wisp>& wisps, double timeou
     _exit(0);
   }
   close(fd[1]);
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = diffusion::Clock::now();
   int status = 0;
   while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (ms_since(t0) > timeout_s * 1000) {
+    if (diffusion::ms_since(t0) > timeout_s * 1000) {
       kill(pid, SIGKILL);
       waitpid(pid, &status, 0);
       close(fd[0]);
@@ -151,12 +147,12 @@ int run_arrangement(const std::vector<std::string>& args) {
       std::vector<vector::Wisp> wisps;
       vector::WispArrangement arr;
       for (int r = 0; r < repeats; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = diffusion::Clock::now();
         wisps = vector::build_wisps(frame, style);
-        build.push_back(ms_since(t0));
-        const auto t1 = std::chrono::steady_clock::now();
+        build.push_back(diffusion::ms_since(t0));
+        const auto t1 = diffusion::Clock::now();
         arr = vector::build_arrangement(wisps, options);
-        total.push_back(ms_since(t1));
+        total.push_back(diffusion::ms_since(t1));
         sweep.push_back(arr.stats.sweep_ms);
         resolve.push_back(arr.stats.resolve_ms);
       }
@@ -165,7 +161,7 @@ int run_arrangement(const std::vector<std::string>& args) {
         return v[v.size() / 2];
       };
       long cubics = 0;
-      for (const auto& w : wisps) cubics += w.outline.cubic_count();
+      for (const auto& w : wisps) cubics += w.outline.piece_count();
       std::string exact = "null";
       if (!exact_gave_up) {
         vector::ArrangementOptions unclipped;

@@ -7,12 +7,12 @@
 // docs/sim.md), so it runs at 150 guides over a shorter shot unless --full is given.
 // Usage: wisp-bench sim [--quick] [--full]
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "bench/benches.hpp"
+#include "diffusion/timer.hpp"
 #include "sim/head.hpp"
 #include "sim/simulate.hpp"
 
@@ -48,14 +48,14 @@ Run run(const std::string& model, int guides, int links, double duration, int su
   r.iterations = iterations;
   r.duration = duration;
   std::fprintf(stderr, "sim: %s, %d guides, %.1f s of shake...\n", model.c_str(), guides, duration);
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = diffusion::Clock::now();
   sim::Animation anim;
   try {
     anim = sim::simulate(setup);
   } catch (const std::exception& e) {
     r.status = e.what();
   }
-  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wall = diffusion::seconds_since(start);
   const sim::HeadShape head(setup.head);
   r.deepest = 1;
   for (const auto& f : anim.frames) {

@@ -40,7 +40,7 @@ std::vector<Segment> active_segments(const std::vector<DiffusionCurve>& curves, 
   std::vector<Segment> out;
   for (size_t c = 0; c < curves.size(); ++c) {
     const DiffusionCurve& curve = curves[c];
-    const std::vector<PathSample> poly = flatten_path(curve.points, tolerance);
+    const std::vector<PathSample> poly = flatten(curve, tolerance);
     for (size_t k = 1; k < poly.size(); ++k) {
       const PathSample &s0 = poly[k - 1], &s1 = poly[k];
       if (curve.active.empty()) {

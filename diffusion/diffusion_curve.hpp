@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
+
 namespace wisp::diffusion {
 
 using Color = Eigen::Vector3f;  // RGB in [0,1], interpolated and diffused as given (no gamma).
@@ -36,10 +38,9 @@ struct BlurStop {
 
 enum class Boundary { Dirichlet, Neumann };
 
-struct DiffusionCurve {
-  // 3k+1 control points: k cubic segments sharing end points. Parameter t in [0,1] runs uniformly
-  // over segments: segment s covers [s/k, (s+1)/k].
-  std::vector<Eigen::Vector2d> points;
+// The path (3k+1 control points, see BezierPath) with its parameter t as the one of the stops and
+// the active intervals.
+struct DiffusionCurve : BezierPath {
   std::vector<ColorStop> left, right;
   Boundary left_boundary = Boundary::Dirichlet;
   Boundary right_boundary = Boundary::Dirichlet;
@@ -51,8 +52,6 @@ struct DiffusionCurve {
   // Parameter intervals [t0,t1] where the curve constrains the solve; empty means everywhere.
   // Hidden parts of wisp outlines are left out this way without cutting the curve.
   std::vector<std::pair<double, double>> active;
-
-  int segment_count() const { return points.size() >= 4 ? int(points.size() - 1) / 3 : 0; }
 };
 
 // A whole drawing: the image size it was authored for and its curves.

@@ -12,19 +12,14 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
+#include "diffusion/timer.hpp"
+
 namespace wisp::diffusion {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Runs body(y0, y1) over rows [0, rows) in parallel chunks of about `points_per_task` points.
 template <class Body>

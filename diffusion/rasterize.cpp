@@ -113,7 +113,7 @@ Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int heig
                {},
                {}};
   for (const DiffusionCurve& c : curves) {
-    const std::vector<PathSample> poly = flatten_path(c.points, options.flatten_tolerance);
+    const std::vector<PathSample> poly = flatten(c, options.flatten_tolerance);
     for (size_t k = 1; k < poly.size(); ++k) r.edge(c, poly[k - 1], poly[k]);
   }
   if (!r.wx.empty() || !r.wy.empty()) {

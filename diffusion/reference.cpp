@@ -3,14 +3,15 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <chrono>
 #include <stdexcept>
+
+#include "diffusion/timer.hpp"
 
 namespace wisp::diffusion {
 
 ReferenceResult solve_reference(const Problem& p, ReferenceMethod method, double tolerance) {
   check_problem(p);
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   const int W = p.width, H = p.height;
   const size_t n = p.pixel_count();
 
@@ -72,7 +73,7 @@ ReferenceResult solve_reference(const Problem& p, ReferenceMethod method, double
     for (size_t i = 0; i < n; ++i)
       out.planes[c * n + i] =
           unknown[i] >= 0 ? float(x(unknown[i], c)) : (p.fixed[i] ? p.value[c * n + i] : 0.0f);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   return out;
 }
 

@@ -1,20 +1,13 @@
 // render_drawing: rasterize, solve, reblur (see render.hpp).
 #include "diffusion/render.hpp"
 
-#include <chrono>
 #include <stdexcept>
 #include <string>
 
 #include "diffusion/blur.hpp"
+#include "diffusion/timer.hpp"
 
 namespace wisp::diffusion {
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 Image render_drawing(const Drawing& drawing, int width, int height, const SolverOptions& solver,
                      RenderStats* stats, bool antialias) {
@@ -23,7 +16,7 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   RenderStats local;
   RenderStats& st = stats ? *stats : local;
 
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   const Eigen::Vector2d scale(double(width) / drawing.width, double(height) / drawing.height);
   std::vector<DiffusionCurve> curves = drawing.curves;
   bool any_blur = false;
@@ -40,13 +33,13 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   const Problem problem = rasterize(curves, width, height, raster);
   st.rasterize_ms = ms_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   Solution solution = solve_multigrid(problem, solver);
   st.solver = solution.stats;
   st.solve_ms = ms_since(t0);
 
   if (antialias) {
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     st.antialiased_pixels = diffusion::antialias(curves, width, height, solution.planes).pixels;
     st.antialias_ms = ms_since(t0);
   }
@@ -54,7 +47,7 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   Image image{width, height, {}};
   const size_t n = size_t(width) * size_t(height);
   if (any_blur) {
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     const std::vector<float> sigma(solution.planes.begin() + 3 * n, solution.planes.end());
     solution.planes.resize(3 * n);
     image.planes = spatially_varying_blur(solution.planes, 3, width, height, sigma);

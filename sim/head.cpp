@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "sim/ray_triangle.hpp"
+
 namespace wisp::sim {
 namespace {
 
@@ -38,22 +40,6 @@ Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3
     return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denom = 1.0 / (va + vb + vc);
   return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
-// Ray-triangle intersection (Moller-Trumbore); returns the ray parameter or -1.
-double ray_triangle(const Vector3d& o, const Vector3d& d, const Vector3d& a, const Vector3d& b,
-                    const Vector3d& c) {
-  const Vector3d e1 = b - a, e2 = c - a, p = d.cross(e2);
-  const double det = e1.dot(p);
-  if (std::abs(det) < 1e-18) return -1;
-  const double inv = 1.0 / det;
-  const Vector3d s = o - a;
-  const double u = s.dot(p) * inv;
-  if (u < 0 || u > 1) return -1;
-  const Vector3d q = s.cross(e1);
-  const double v = d.dot(q) * inv;
-  if (v < 0 || u + v > 1) return -1;
-  return e2.dot(q) * inv;
 }
 
 }  // namespace

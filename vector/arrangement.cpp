@@ -4,11 +4,11 @@
 #include "vector/arrangement.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
 #include "vector/ink.hpp"
 #include "vector/planar_map.hpp"
@@ -19,10 +19,8 @@ using Eigen::Vector2d;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using diffusion::Clock;
+using diffusion::ms_since;
 
 using Cover = std::vector<std::pair<int, int>>;  // (wisp, winding != 0), sorted by wisp
 

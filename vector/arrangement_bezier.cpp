@@ -7,9 +7,9 @@
 #include <CGAL/CORE_algebraic_number_traits.h>
 #include <CGAL/Cartesian.h>
 
-#include <chrono>
 #include <stdexcept>
 
+#include "diffusion/timer.hpp"
 #include "vector/arrangement.hpp"
 
 namespace wisp::vector {
@@ -31,11 +31,11 @@ RatPoint rational(const Eigen::Vector2d& p) {
 }  // namespace
 
 ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = diffusion::Clock::now();
   std::vector<BezierTraits::Curve_2> curves;
   for (const Wisp& w : wisps) {
-    for (int i = 0; i < w.outline.cubic_count(); ++i) {
-      const Cubic c = w.outline.cubic(i);
+    for (int i = 0; i < w.outline.piece_count(); ++i) {
+      const diffusion::Cubic c = w.outline.piece(i);
       if (c[0] == c[3] && c[1] == c[0] && c[2] == c[0]) continue;
       // Caps are straight: give them as degree 1 (collinear cubics are a fragile case).
       std::vector<RatPoint> control;
@@ -56,7 +56,7 @@ ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps) {
   t.vertices = long(arr.number_of_vertices());
   t.edges = long(arr.number_of_edges());
   t.faces = long(arr.number_of_faces());
-  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  t.ms = diffusion::ms_since(t0);
   return t;
 }
 

@@ -22,7 +22,7 @@ namespace wisp::vector {
 
 double outline_parameter(const Wisp& wisp, double t, bool left_side) {
   const Outline& o = wisp.outline;
-  const int k = o.cubic_count();
+  const int k = o.piece_count();
   const Side wanted = left_side ? Side::Left : Side::Right;
   // Along a side the centre parameter is monotonic: increasing on the left, decreasing on the
   // right. Find the cubic whose end points bracket t and interpolate linearly between them.
@@ -333,7 +333,7 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       return false;
     };
     const auto active = [&](const ChartCurve& c) {
-      Intervals a = regions->active(w, c.path.points);
+      Intervals a = regions->active(w, c.path);
       if (!shapes.empty()) a = intersect_intervals(a, outside_of(c.tu, c.path.param, in_highlight));
       return a;
     };
@@ -342,7 +342,7 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       std::vector<Vector2d> tu;
       for (double t : ts) tu.emplace_back(t, 0.0);
       ChartCurve c = fit_chart_curve(chart, std::move(tu), false);
-      if (c.path.cubic_count() > 0) {
+      if (c.path.piece_count() > 0) {
         diffusion::DiffusionCurve d;
         d.points = c.path.points;
         d.left = stops_along(shader, c.tu, c.path.param);
@@ -364,7 +364,7 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       for (size_t e = 0; e < bands->edges().size(); ++e) {
         for (ChartContour& k : chart_contours(g, bands->edges()[e], exact)) {
           ChartCurve c = fit_chart_curve(chart, std::move(k.tu), k.closed);
-          if (c.path.cubic_count() == 0) continue;
+          if (c.path.piece_count() == 0) continue;
           diffusion::DiffusionCurve d;
           d.points = c.path.points;
           // Higher x lies on the chart's left, which is diffusion's right.
@@ -380,7 +380,7 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
                                [](const ColorStop& a, const ColorStop& b) { return a.t < b.t; });
               side->push_back({1.0, side->front().color});
             }
-            d.active = regions->active(w, d.points);
+            d.active = regions->active(w, d);
           } else {
             d.active = active(c);
           }
@@ -392,13 +392,13 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
     const double step_t = (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, ts.size());
     for (const ChartPolygon& p : shapes) {
       ChartCurve c = fit_chart_curve(chart, densify(p, step_t, 0.1), true);
-      if (c.path.cubic_count() == 0) continue;
+      if (c.path.piece_count() == 0) continue;
       diffusion::DiffusionCurve d;
       d.points = c.path.points;
       // Counter-clockwise in the chart: the inside is on diffusion's right.
       d.right = {{0.0, style.specular.color}, {1.0, style.specular.color}};
       d.left_boundary = diffusion::Boundary::Neumann;
-      d.active = regions->active(w, d.points);
+      d.active = regions->active(w, d);
       if (!d.active.empty()) inner.push_back(std::move(d)), ++result.stats.highlights;
     }
   }

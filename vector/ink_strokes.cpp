@@ -142,7 +142,7 @@ std::vector<InkCurve> ink_curves(const std::vector<Wisp>& wisps, const WispArran
       pw.push_back(w[i]);
     }
     const FittedPath path = fit_cubics(pts, fit, line.closed);
-    if (path.cubic_count() == 0) return;
+    if (path.piece_count() == 0) return;
     std::vector<std::pair<double, double>> stops;
     for (size_t i = 0; i < pts.size(); ++i) stops.emplace_back(path.param[i], pw[i]);
     if (line.closed) {
@@ -152,7 +152,6 @@ std::vector<InkCurve> ink_curves(const std::vector<Wisp>& wisps, const WispArran
     InkCurve c;
     c.points = path.points;
     c.width = thin(stops, 0.05);
-    c.closed = line.closed;
     c.silhouette = silhouette;
     c.wisp = line.wisp;
     out.push_back(std::move(c));

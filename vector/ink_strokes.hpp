@@ -20,17 +20,17 @@
 #include <utility>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
 #include "vector/arrangement.hpp"
 #include "vector/hair_style.hpp"
 
 namespace wisp::vector {
 
-struct InkCurve {
-  std::vector<Eigen::Vector2d> points;           // 3k+1 cubic Bezier control points
+// The fitted path (closed for a loop) with its width along it.
+struct InkCurve : diffusion::BezierPath {
   std::vector<std::pair<double, double>> width;  // (path parameter, full width px), sorted
-  bool closed = false;
-  bool silhouette = true;  // false: an occlusion boundary
-  int wisp = -1;           // the wisp whose outline it follows
+  bool silhouette = true;                        // false: an occlusion boundary
+  int wisp = -1;                                 // the wisp whose outline it follows
 };
 
 // Pixels per reference pixel for a frame of this size.

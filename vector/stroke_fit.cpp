@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vector/bezier.hpp"
-
 namespace wisp::vector {
 
+using diffusion::Cubic;
+using diffusion::derivative;
+using diffusion::eval;
+using diffusion::second_derivative;
 using Eigen::Vector2d;
 
 namespace {
@@ -17,8 +19,8 @@ Vector2d unit_or(const Vector2d& v, const Vector2d& fallback) {
   return n > 1e-12 ? Vector2d(v / n) : fallback;
 }
 
-// Fits p[a..b] (at least two points) and appends the cubics' control points (without the first,
-// which the caller has already written) and each point's local parameter.
+// Fits p[a..b] (at least two points) and appends the cubics to the path and each point's local
+// parameter.
 class Fitter {
  public:
   Fitter(const std::vector<Vector2d>& p, const FitOptions& o)
@@ -26,7 +28,7 @@ class Fitter {
 
   // Parameters per input point (global cubic index + local u, later normalised).
   std::vector<double> u_global;
-  std::vector<Vector2d> out;  // control points, first point written by the caller
+  diffusion::BezierPath out;
   std::vector<int> knots;
 
   void fit(int a, int b, const Vector2d& t1, const Vector2d& t2) {
@@ -65,9 +67,7 @@ class Fitter {
  private:
   void emit(int a, int b, const Cubic& c, const std::vector<double>& u) {
     const int k = int(knots.size()) - 1;  // index of this cubic
-    out.push_back(c[1]);
-    out.push_back(c[2]);
-    out.push_back(c[3]);
+    out.append(c);
     for (int i = a; i <= b; ++i) {
       double v = std::clamp(u[i - a], 0.0, 1.0);
       if (i == a) v = 0;
@@ -199,14 +199,6 @@ Vector2d backward_tangent(const std::vector<Vector2d>& p, int i, int first, doub
 
 }  // namespace
 
-Vector2d path_point(const std::vector<Vector2d>& path, double s) {
-  const int k = path.size() >= 4 ? int(path.size() - 1) / 3 : 0;
-  if (k == 0) return path.empty() ? Vector2d::Zero() : path.front();
-  const double x = std::clamp(s, 0.0, 1.0) * k;
-  const int i = std::min(k - 1, int(std::floor(x)));
-  return eval({path[3 * i], path[3 * i + 1], path[3 * i + 2], path[3 * i + 3]}, x - i);
-}
-
 FittedPath fit_cubics(const std::vector<Vector2d>& input, const FitOptions& options, bool closed) {
   FittedPath out;
   // Distinct points, remembering which distinct point each input point became.
@@ -250,7 +242,6 @@ FittedPath fit_cubics(const std::vector<Vector2d>& input, const FitOptions& opti
   const double reach = std::max(0.5, 2 * options.tolerance);
   Fitter fitter(q, options);
   fitter.u_global.assign(q.size(), -1.0);
-  fitter.out.push_back(q[0]);
   fitter.knots.push_back(0);
   const bool smooth_loop = closed && !corner_at(start);
   Vector2d loop_tangent(1, 0);
@@ -263,8 +254,8 @@ FittedPath fit_cubics(const std::vector<Vector2d>& input, const FitOptions& opti
     fitter.fit(a, b, t1, t2);
   }
 
-  out.points = std::move(fitter.out);
-  const int k = out.cubic_count();
+  out.points = std::move(fitter.out.points);
+  const int k = out.piece_count();
   std::vector<double> s(q.size());
   for (size_t i = 0; i < q.size(); ++i) s[i] = std::max(0.0, fitter.u_global[i]) / k;
   for (size_t i = 1; i < s.size(); ++i) s[i] = std::max(s[i], s[i - 1]);

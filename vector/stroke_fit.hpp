@@ -16,6 +16,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
+
 namespace wisp::vector {
 
 struct FitOptions {
@@ -24,17 +26,13 @@ struct FitOptions {
   int max_reparameterize = 8;  // Newton-Raphson passes before a piece is split
 };
 
-struct FittedPath {
-  // 3k+1 control points (last == first for a closed input); parameter s in [0,1] runs uniformly
-  // over the k cubics, as in diffusion::DiffusionCurve.
-  std::vector<Eigen::Vector2d> points;
+// The fitted path: closed (last point == first) for a closed input of 3 or more distinct points.
+struct FittedPath : diffusion::BezierPath {
   // Per input point: its parameter s on the path, non-decreasing for an open input. A loop
   // starts at its sharpest corner (point knot_index[0], s = 0) and returns to it at s = 1.
   std::vector<double> param;
   // Per cubic end (k+1 entries): the index of the input point it interpolates.
   std::vector<int> knot_index;
-
-  int cubic_count() const { return points.size() >= 4 ? int(points.size() - 1) / 3 : 0; }
 };
 
 // Fits a polyline of at least 2 points (consecutive duplicates are tolerated). `closed`: the
@@ -42,8 +40,5 @@ struct FittedPath {
 // give an empty path.
 FittedPath fit_cubics(const std::vector<Eigen::Vector2d>& points, const FitOptions& options,
                       bool closed = false);
-
-// Position on a path in the FittedPath / DiffusionCurve layout at parameter s in [0,1].
-Eigen::Vector2d path_point(const std::vector<Eigen::Vector2d>& path, double s);
 
 }  // namespace wisp::vector

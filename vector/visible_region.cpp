@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vector/bezier.hpp"
-
 namespace wisp::vector {
 
 using Eigen::Vector2d;
@@ -57,21 +55,18 @@ bool VisibleRegions::contains(int wisp, const Vector2d& p) const {
 }
 
 std::vector<std::pair<double, double>> VisibleRegions::active(int wisp,
-                                                              const std::vector<Vector2d>& path,
+                                                              const diffusion::BezierPath& path,
                                                               double step_px) const {
   std::vector<std::pair<double, double>> out;
-  const int k = path.size() >= 4 ? int(path.size() - 1) / 3 : 0;
+  const int k = path.piece_count();
   if (k == 0) return out;
-  const auto at = [&](double s) {
-    const double x = std::clamp(s, 0.0, 1.0) * k;
-    const int i = std::min(k - 1, int(std::floor(x)));
-    return eval({path[3 * i], path[3 * i + 1], path[3 * i + 2], path[3 * i + 3]}, x - i);
-  };
+  const auto at = [&](double s) { return diffusion::eval(path, s); };
   // Samples: per cubic, enough for `step_px` along its control polygon.
   std::vector<double> s;
   for (int i = 0; i < k; ++i) {
+    const diffusion::Cubic c = path.piece(i);
     double len = 0;
-    for (int j = 0; j < 3; ++j) len += (path[3 * i + j + 1] - path[3 * i + j]).norm();
+    for (int j = 0; j < 3; ++j) len += (c[j + 1] - c[j]).norm();
     const int n = std::max(1, int(std::ceil(len / step_px)));
     for (int j = 0; j < n; ++j) s.push_back((i + double(j) / n) / k);
   }

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
 #include "vector/arrangement_view.hpp"
 
 namespace wisp::vector {
@@ -22,10 +23,10 @@ class VisibleRegions {
 
   bool contains(int wisp, const Eigen::Vector2d& p) const;
 
-  // Sorted disjoint parameter intervals of a cubic path (3k+1 points, the DiffusionCurve layout)
-  // where it lies in the wisp's visible region. Sampled so that consecutive samples are at most
-  // `step_px` apart; each change is located to 1e-4 px.
-  std::vector<std::pair<double, double>> active(int wisp, const std::vector<Eigen::Vector2d>& path,
+  // Sorted disjoint parameter intervals of a path where it lies in the wisp's visible region.
+  // Sampled so that consecutive samples are at most `step_px` apart; each change is located to
+  // 1e-4 px.
+  std::vector<std::pair<double, double>> active(int wisp, const diffusion::BezierPath& path,
                                                 double step_px = 0.5) const;
 
  private:

@@ -8,8 +8,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "vector/catmull_rom.hpp"
+
 namespace wisp::vector {
 
+using diffusion::Cubic;
+using diffusion::derivative;
+using diffusion::eval;
+using diffusion::flatten_pieces;
+using diffusion::line_cubic;
+using diffusion::reversed;
+using diffusion::second_derivative;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
@@ -240,10 +249,6 @@ void fit_pieces(const Extruder& ex, int span, double v0, double v1, int level,
   out.push_back(piece);
 }
 
-Cubic reversed(const Cubic& c) {
-  return {c[3], c[2], c[1], c[0]};
-}
-
 double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
   const Vector2d ab = b - a;
   const double len2 = ab.squaredNorm();
@@ -341,28 +346,26 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   w.last_sample = last;
   std::vector<Vector2d> points;
   for (int i : kept) points.push_back(strand.pixel[i]);
-  const std::vector<Cubic> cubics = catmull_rom_spans(points);
-  const int k = int(cubics.size());
+  CentreSpline& c = w.centre;
+  c.points = catmull_rom_path(points).points;
+  const int k = c.piece_count();
 
   auto sample_tangent = [&](int i) -> Vector3d {
     return strand.tangent.empty() ? Vector3d::Zero() : strand.tangent[i];
   };
   auto strand_u = [&](int i) { return double(i) / (samples - 1); };
   std::vector<Span> spans;
-  CentreSpline& c = w.centre;
   for (int s = 0; s < k; ++s) {
     const int a = kept[s], b = kept[s + 1];
-    spans.push_back({cubics[s], strand.depth[a], strand.depth[b], strand_u(a), strand_u(b)});
+    spans.push_back({c.piece(s), strand.depth[a], strand.depth[b], strand_u(a), strand_u(b)});
     for (int j = 0; j < 3; ++j) {
       const double f = j / 3.0;
-      c.points.push_back(cubics[s][j]);
       c.depth.push_back(strand.depth[a] + (strand.depth[b] - strand.depth[a]) * f);
       const Vector3d t = (1 - f) * sample_tangent(a) + f * sample_tangent(b);
       c.tangent.push_back(t.norm() > 0 ? Vector3d(t.normalized()) : t);
       c.strand_u.push_back(strand_u(a) + (strand_u(b) - strand_u(a)) * f);
     }
   }
-  c.points.push_back(cubics.back()[3]);
   c.depth.push_back(strand.depth[last]);
   c.tangent.push_back(sample_tangent(last));
   c.strand_u.push_back(strand_u(last));
@@ -388,12 +391,11 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   auto z_of = [&](const Piece& p, double q) { return ex.depth(p.span, p.v0 + (p.v1 - p.v0) * q); };
   auto add_cubic = [&](const Cubic& cubic, Side side, double t0, double t1, double z0, double z1) {
     if (o.points.empty()) {
-      o.points.push_back(cubic[0]);
       o.t.push_back(t0);
       o.depth.push_back(z0);
     }
+    o.append(cubic);
     for (int j = 1; j <= 3; ++j) {
-      o.points.push_back(cubic[j]);
       o.t.push_back(t0 + (t1 - t0) * j / 3);
       o.depth.push_back(z0 + (z1 - z0) * j / 3);
     }

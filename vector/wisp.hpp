@@ -21,8 +21,8 @@
 #include <optional>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
 #include "sim/projected.hpp"
-#include "vector/bezier.hpp"
 #include "vector/width_profile.hpp"
 
 namespace wisp::vector {
@@ -53,32 +53,21 @@ void validate(const WispStyle& style);
 enum class Side : std::uint8_t { Left, Tip, Right, Root };
 const char* to_string(Side side);
 
-// The centre curve: a centripetal Catmull-Rom spline through the kept samples, as 3k+1 Bezier
-// control points. Parameter t in [0,1] runs uniformly over spans (span i covers [i/k, (i+1)/k]).
-struct CentreSpline {
-  std::vector<Eigen::Vector2d> points;
+// The centre curve: a centripetal Catmull-Rom spline through the kept samples (vector/
+// catmull_rom.hpp), one piece (span) per pair of kept samples. Its parameter t in [0,1] runs
+// uniformly over the spans (span i covers [i/k, (i+1)/k]).
+struct CentreSpline : diffusion::BezierPath {
   std::vector<double> depth;             // per control point; linear in t within a span
   std::vector<Eigen::Vector3d> tangent;  // unit 3D tangent per control point (zero if not given)
   std::vector<double> strand_u;          // strand parameter (sample / (samples-1)) per point
-
-  int span_count() const { return points.size() >= 4 ? int(points.size() - 1) / 3 : 0; }
-  Cubic span(int i) const {
-    return {points[3 * i], points[3 * i + 1], points[3 * i + 2], points[3 * i + 3]};
-  }
 };
 
-// The closed outline as a cubic Bezier path in the layout of diffusion::DiffusionCurve: 3K+1
-// control points (last == first); parameter s in [0,1] runs uniformly over the K cubics.
-struct Outline {
-  std::vector<Eigen::Vector2d> points;
+// The outline: a closed path (last point == first), as the outline diffusion curves take it;
+// its parameter s in [0,1] runs uniformly over its K cubics.
+struct Outline : diffusion::BezierPath {
   std::vector<double> depth;  // per control point: the depth of B(t) at the point's t
   std::vector<double> t;      // centre parameter per control point
   std::vector<Side> side;     // per cubic
-
-  int cubic_count() const { return int(side.size()); }
-  Cubic cubic(int i) const {
-    return {points[3 * i], points[3 * i + 1], points[3 * i + 2], points[3 * i + 3]};
-  }
 };
 
 // One cross-section of the flattened band at centre parameter t. Consecutive sections bound the

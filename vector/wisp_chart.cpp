@@ -89,7 +89,7 @@ TubeFrame WispChart::frame(double t) const {
 
 std::vector<double> WispChart::samples(double step_px, int per_span) const {
   const auto& s = wisp_.sections;
-  const int spans = std::max(1, wisp_.centre.span_count());
+  const int spans = std::max(1, wisp_.centre.piece_count());
   const double max_dt = 1.0 / (spans * std::max(1, per_span));
   std::vector<double> out = {s.front().t};
   for (size_t i = 0; i + 1 < s.size(); ++i) {

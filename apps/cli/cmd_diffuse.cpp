@@ -1,16 +1,17 @@
 // `wisp diffuse IN.xml -o OUT.png`: renders a classic diffusion-curve drawing on its own.
 #include <tbb/global_control.h>
 
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <stdexcept>
+#include <tuple>
 
 #include "apps/cli/commands.hpp"
+#include "apps/render/scene_frames.hpp"
 #include "diffusion/render.hpp"
+#include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
 #include "io/drawing_xml.hpp"
 #include "io/image_file.hpp"
@@ -26,10 +27,6 @@ struct DiffuseArgs {
   bool no_antialias = false;
 };
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 void check_side(int side, const std::string& what) {
   if (side < 1 || side > io::kMaxImageSide)
     throw std::invalid_argument(what + ": image side " + std::to_string(side) +
@@ -37,7 +34,7 @@ void check_side(int side, const std::string& what) {
 }
 
 void run_diffuse(const DiffuseArgs& a) {
-  const auto t_start = std::chrono::steady_clock::now();
+  const auto t_start = diffusion::Clock::now();
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -45,20 +42,11 @@ void run_diffuse(const DiffuseArgs& a) {
 
   // Arguments are checked before any work, so that their errors come first and alone.
   int width = 0, height = 0;
-  if (!a.size.empty()) {
-    std::smatch m;
-    if (!std::regex_match(a.size, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
-      throw std::invalid_argument("--size: expected WxH, for example 512x512, got '" + a.size +
-                                  "'");
-    width = std::stoi(m[1]);
-    height = std::stoi(m[2]);
-    check_side(width, "--size");
-    check_side(height, "--size");
-  }
+  if (!a.size.empty()) std::tie(width, height) = render::parse_size("--size", a.size);
 
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = diffusion::Clock::now();
   const io::DrawingFile file = io::read_drawing_xml(a.input);
-  const double read_ms = ms_since(t0);
+  const double read_ms = diffusion::ms_since(t0);
   for (const std::string& w : file.warnings) std::fprintf(stderr, "wisp: warning: %s\n", w.c_str());
 
   if (a.size.empty()) {
@@ -82,10 +70,10 @@ void run_diffuse(const DiffuseArgs& a) {
                  "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
                  st.solver.final_residual, a.tolerance);
 
-  t0 = std::chrono::steady_clock::now();
+  t0 = diffusion::Clock::now();
   io::write_png(a.output, image);
   if (!a.xml.empty()) io::write_drawing_xml(file.drawing, a.xml);
-  const double write_ms = ms_since(t0);
+  const double write_ms = diffusion::ms_since(t0);
 
   if (!a.stats.empty()) {
     nlohmann::json j;
@@ -98,7 +86,7 @@ void run_diffuse(const DiffuseArgs& a) {
     j["times_ms"] = {{"read", read_ms},           {"rasterize", st.rasterize_ms},
                      {"solve", st.solve_ms},      {"antialias", st.antialias_ms},
                      {"blur", st.blur_ms},        {"write", write_ms},
-                     {"total", ms_since(t_start)}};
+                     {"total", diffusion::ms_since(t_start)}};
     j["solver"] = {{"levels", st.solver.levels},
                    {"cycles", st.solver.cycles},
                    {"setup_ms", st.solver.setup_ms},

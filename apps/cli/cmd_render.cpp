@@ -14,7 +14,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +28,7 @@
 #include "apps/render/progress.hpp"
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
+#include "diffusion/timer.hpp"
 #include "io/anim_file.hpp"
 #include "io/atomic_file.hpp"
 #include "io/contact_sheet.hpp"
@@ -42,11 +42,8 @@ namespace wisp::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using diffusion::Clock;
+using diffusion::ms_since;
 
 struct RenderArgs {
   std::string scene, outdir, frames, size, anim, svg_style = "embedded";

@@ -1,6 +1,5 @@
 // `wisp simulate scene.json -o anim.wsim`: runs the strand simulation of a scene and saves every
 // frame's head pose and strands (io/anim_file.hpp), with a progress bar and a one-line summary.
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -8,6 +7,7 @@
 #include "apps/cli/commands.hpp"
 #include "apps/render/progress.hpp"
 #include "apps/render/scene_setup.hpp"
+#include "diffusion/timer.hpp"
 #include "io/anim_file.hpp"
 #include "io/scene.hpp"
 #include "sim/simulate.hpp"
@@ -30,7 +30,7 @@ void add_simulate_command(CLI::App& app) {
     io::Scene scene = io::load_scene(opt->scene);
     if (!opt->model.empty()) scene.sim.model = opt->model;
     const sim::SimSetup setup = render::load_sim_setup(scene);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = diffusion::Clock::now();
     std::unique_ptr<render::ProgressBar> bar;
     if (!opt->quiet)
       bar = std::make_unique<render::ProgressBar>(
@@ -39,8 +39,7 @@ void add_simulate_command(CLI::App& app) {
       if (bar) bar->update(done);
     });
     if (bar) bar->finish();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = diffusion::seconds_since(start);
     io::write_animation(opt->output, anim);
     if (!opt->quiet) {
       double stretch = 0;

@@ -133,12 +133,12 @@ struct Pen {
     const Vec2 qa = view.to_canvas(a), qb = view.to_canvas(b), qc = view.to_canvas(c);
     cairo_curve_to(cr, qa.x(), qa.y(), qb.x(), qb.y(), qc.x(), qc.y());
   }
-  // A closed or open cubic Bezier path of 3k+1 control points.
-  void bezier(const std::vector<Vec2>& points) const {
-    if (points.size() < 4) return;
-    move(points[0]);
-    for (size_t i = 1; i + 2 < points.size(); i += 3)
-      curve(points[i], points[i + 1], points[i + 2]);
+  void bezier(const diffusion::BezierPath& path) const {
+    for (int i = 0; i < path.piece_count(); ++i) {
+      const diffusion::Cubic c = path.piece(i);
+      if (i == 0) move(c[0]);
+      curve(c[1], c[2], c[3]);
+    }
   }
   void polyline(const std::vector<Vec2>& points, bool closed) const {
     if (points.empty()) return;
@@ -227,7 +227,7 @@ void draw_outlines(const Pen& pen, const InspectFrame& f) {
   const auto& wisps = f.result.wisps;
   for (size_t w = 0; w < wisps.size(); ++w) {
     cairo_new_path(pen.cr);
-    pen.bezier(wisps[w].outline.points);
+    pen.bezier(wisps[w].outline);
     pen.stroke(wisp_color(int(w)), 1.25);
   }
 }
@@ -254,25 +254,33 @@ void draw_curves(const Pen& pen, const InspectFrame& f) {
   const auto& wisps = f.result.wisps;
   cairo_t* cr = pen.cr;
   cairo_new_path(cr);
+  // The handles: each span's end points to their inner control points.
   for (const vector::Wisp& w : wisps)
-    for (size_t i = 0; i + 3 < w.centre.points.size(); i += 3) {
-      pen.move(w.centre.points[i + 1]);
-      pen.line(w.centre.points[i]);
-      pen.move(w.centre.points[i + 2]);
-      pen.line(w.centre.points[i + 3]);
+    for (int i = 0; i < w.centre.piece_count(); ++i) {
+      const diffusion::Cubic c = w.centre.piece(i);
+      pen.move(c[1]);
+      pen.line(c[0]);
+      pen.move(c[2]);
+      pen.line(c[3]);
     }
   pen.stroke(kControlPolygonColor, 0.8);
   cairo_new_path(cr);
-  for (const vector::Wisp& w : wisps) pen.bezier(w.centre.points);
+  for (const vector::Wisp& w : wisps) pen.bezier(w.centre);
   pen.stroke(kCurveColor, 1.0);
   cairo_new_path(cr);
   for (const vector::Wisp& w : wisps)
-    for (size_t i = 0; i < w.centre.points.size(); ++i)
-      if (i % 3 != 0) pen.dot(w.centre.points[i], 1.2);
+    for (int i = 0; i < w.centre.piece_count(); ++i) {
+      const diffusion::Cubic c = w.centre.piece(i);
+      pen.dot(c[1], 1.2);
+      pen.dot(c[2], 1.2);
+    }
   set_rgb(cr, kHandleColor);
   cairo_fill(cr);
   for (const vector::Wisp& w : wisps)
-    for (size_t i = 0; i < w.centre.points.size(); i += 3) pen.square(w.centre.points[i], 1.5);
+    for (int i = 0; i < w.centre.piece_count(); ++i) {
+      if (i == 0) pen.square(w.centre.points.front(), 1.5);
+      pen.square(w.centre.piece(i)[3], 1.5);
+    }
   set_rgb(cr, kOnCurveColor);
   cairo_fill(cr);
 }
@@ -295,10 +303,10 @@ void draw_ink(const Pen& pen, const InspectFrame& f) {
       const Rgb8 color{to_byte(s.color[0]), to_byte(s.color[1]), to_byte(s.color[2])};
       for (const render::InkPiece& piece : render::ink_pieces(s)) {
         cairo_new_path(cr);
-        pen.bezier(piece.points);
+        pen.bezier(piece);
         pen.stroke(color, std::max(1.0, piece.width * pen.view.zoom));
       }
-      if (s.curve.empty() && s.points.size() >= 2) {  // a polyline stroke: its mean width
+      if (s.curve.points.empty() && s.points.size() >= 2) {  // a polyline stroke: its mean width
         double width = 0;
         for (double w : s.width) width += w;
         width = s.width.empty() ? 1.0 : width / s.width.size();

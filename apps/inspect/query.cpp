@@ -75,8 +75,8 @@ std::string wisp_summary(const InspectFrame& f, int w) {
       "wisp %d: strand %d, samples %d-%d, %d centre spans, %d outline cubics, length %.1f px, "
       "half-width %.2f-%.2f px, depth %.4f-%.4f, outline visible %.0f%% in %d pieces, front in "
       "%d faces",
-      w, wisp.strand, wisp.first_sample, wisp.last_sample, wisp.centre.span_count(),
-      wisp.outline.cubic_count(), length, std::isfinite(hw_min) ? hw_min : 0.0, hw_max,
+      w, wisp.strand, wisp.first_sample, wisp.last_sample, wisp.centre.piece_count(),
+      wisp.outline.piece_count(), length, std::isfinite(hw_min) ? hw_min : 0.0, hw_max,
       wisp.centre.depth.empty() ? 0.0 : *zmin, wisp.centre.depth.empty() ? 0.0 : *zmax, 100 * shown,
       int(visible.size()), front);
 }

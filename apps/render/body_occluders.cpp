@@ -8,6 +8,8 @@
 #include <memory>
 #include <numeric>
 
+#include "sim/ray_triangle.hpp"
+
 namespace wisp::render {
 namespace {
 
@@ -90,7 +92,7 @@ struct Surface {
     }
   }
 
-  // Distance along the eye ray through pixel p to the nearest triangle (Moller-Trumbore).
+  // Distance along the eye ray through pixel p to the nearest triangle.
   double depth(const Vector2d& p) const {
     if (!box.contains(p)) return INFINITY;
     const Vector3d dir =
@@ -101,17 +103,8 @@ struct Surface {
     const auto& bucket = grid[size_t(cell(p.y(), box.min().y(), box.max().y())) * cells +
                               cell(p.x(), box.min().x(), box.max().x())];
     for (int t : bucket) {
-      const Vector3d a = world[t].col(0), e1 = world[t].col(1) - a, e2 = world[t].col(2) - a;
-      const Vector3d q = dir.cross(e2);
-      const double det = e1.dot(q);
-      if (std::abs(det) < 1e-14) continue;
-      const Vector3d s = camera.eye - a;
-      const double u = s.dot(q) / det;
-      if (u < 0 || u > 1) continue;
-      const Vector3d r = s.cross(e1);
-      const double v = dir.dot(r) / det;
-      if (v < 0 || u + v > 1) continue;
-      const double d = e2.dot(r) / det;
+      const double d =
+          sim::ray_triangle(camera.eye, dir, world[t].col(0), world[t].col(1), world[t].col(2));
       if (d > 0) best = std::min(best, d);
     }
     return best + bias;

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "diffusion/bezier.hpp"
 #include "diffusion/render.hpp"
 #include "vector/arrangement.hpp"
 
@@ -29,10 +30,10 @@ struct InkStroke {
   std::vector<double> width;
   Rgb color = Rgb::Zero();
   bool closed = false;
-  // The stroke as a cubic Bezier path (3k+1 control points, parameter s uniform over the cubics)
-  // with its full width as (s, px) stops, linear in between. When set, PNG and SVG draw this
-  // (see ink_pieces) and `points`/`width` are its flattening, for tools that want polylines.
-  std::vector<Eigen::Vector2d> curve;
+  // The stroke as a Bezier path with its full width as (s, px) stops over the path parameter s,
+  // linear in between. When set, PNG and SVG draw this (see ink_pieces) and `points`/`width` are
+  // its flattening, for tools that want polylines.
+  diffusion::BezierPath curve;
   std::vector<std::pair<double, double>> curve_width;
 };
 
@@ -44,8 +45,7 @@ struct InkStroke {
 // to 0 are left out. A filled outline of offset curves would follow the width exactly but needs
 // offset approximations that fold on tight bends; stroking keeps every path a real stroke that
 // editors understand.
-struct InkPiece {
-  std::vector<Eigen::Vector2d> points;  // 3k+1 control points
+struct InkPiece : diffusion::BezierPath {
   double width = 0;
 };
 std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step = 0.25);
@@ -65,9 +65,9 @@ struct FramePicture {
   diffusion::Image hair;          // full-frame smooth shading (may be empty: no hair)
   vector::HairMask mask;          // where the hair image shows
   std::vector<InkStroke> ink;     // on top of everything
-  // SVG only: the wisp outlines (3k+1 Bezier control points each), in a hidden debug group,
-  // and the per-wisp regions of --svg-style flat.
-  std::vector<std::vector<Eigen::Vector2d>> outlines;
+  // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
+  // --svg-style flat.
+  std::vector<diffusion::BezierPath> outlines;
   std::vector<FlatRegion> flat;
 };
 

@@ -36,6 +36,15 @@ void polygon_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
   cairo_close_path(cr);
 }
 
+// A Bezier path with at least one piece as the current Cairo path.
+void bezier_path(cairo_t* cr, const diffusion::BezierPath& path) {
+  cairo_move_to(cr, path.points[0].x(), path.points[0].y());
+  for (int i = 0; i < path.piece_count(); ++i) {
+    const diffusion::Cubic c = path.piece(i);
+    cairo_curve_to(cr, c[1].x(), c[1].y(), c[2].x(), c[2].y(), c[3].x(), c[3].y());
+  }
+}
+
 void mask_path(cairo_t* cr, const vector::HairMask& mask) {
   cairo_new_path(cr);
   for (const vector::MaskPolygon& poly : mask.polygons) {
@@ -119,15 +128,11 @@ Surface draw(const FramePicture& pic) {
   cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
   for (const InkStroke& ink : pic.ink) {
-    if (!ink.curve.empty()) {
+    if (!ink.curve.points.empty()) {
       set_rgb(c, ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
         cairo_new_path(c);
-        const auto& q = piece.points;
-        cairo_move_to(c, q[0].x(), q[0].y());
-        for (size_t i = 1; i + 2 < q.size(); i += 3)
-          cairo_curve_to(c, q[i].x(), q[i].y(), q[i + 1].x(), q[i + 1].y(), q[i + 2].x(),
-                         q[i + 2].y());
+        bezier_path(c, piece);
         cairo_set_line_width(c, piece.width);
         cairo_stroke(c);
       }

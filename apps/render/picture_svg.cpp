@@ -39,6 +39,18 @@ void ring_path(std::ostringstream& o, const std::vector<Eigen::Vector2d>& ring) 
   if (!ring.empty()) o << " Z";
 }
 
+// Path data "M x y C ... C ..." of a Bezier path with at least one piece.
+std::string bezier_path(const diffusion::BezierPath& path) {
+  std::ostringstream o;
+  o << 'M' << num(path.points[0].x()) << ' ' << num(path.points[0].y());
+  for (int i = 0; i < path.piece_count(); ++i) {
+    const diffusion::Cubic c = path.piece(i);
+    o << " C" << num(c[1].x()) << ' ' << num(c[1].y()) << ' ' << num(c[2].x()) << ' '
+      << num(c[2].y()) << ' ' << num(c[3].x()) << ' ' << num(c[3].y());
+  }
+  return o.str();
+}
+
 std::string mask_path(const vector::MaskPolygon& poly) {
   std::ostringstream o;
   ring_path(o, poly.outer);
@@ -156,27 +168,16 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
 
   o << " <g id=\"wisp-outlines\" style=\"display:none\" fill=\"none\" stroke=\"#ff00ff\" "
        "stroke-width=\"0.5\">\n";
-  for (const auto& pts : pic.outlines) {
-    if (pts.size() < 4) continue;
-    o << "  <path d=\"M" << num(pts[0].x()) << ' ' << num(pts[0].y());
-    for (size_t i = 1; i + 2 < pts.size(); i += 3)
-      o << " C" << num(pts[i].x()) << ' ' << num(pts[i].y()) << ' ' << num(pts[i + 1].x()) << ' '
-        << num(pts[i + 1].y()) << ' ' << num(pts[i + 2].x()) << ' ' << num(pts[i + 2].y());
-    o << "\"/>\n";
-  }
+  for (const diffusion::BezierPath& outline : pic.outlines)
+    if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
   o << " </g>\n <g id=\"ink\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
   for (const InkStroke& ink : pic.ink) {
-    if (!ink.curve.empty()) {
+    if (!ink.curve.points.empty()) {
       // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
       const std::string color = hex(ink.color);
-      for (const InkPiece& piece : ink_pieces(ink)) {
-        const auto& q = piece.points;
-        o << "  <path d=\"M" << num(q[0].x()) << ' ' << num(q[0].y());
-        for (size_t i = 1; i + 2 < q.size(); i += 3)
-          o << " C" << num(q[i].x()) << ' ' << num(q[i].y()) << ' ' << num(q[i + 1].x()) << ' '
-            << num(q[i + 1].y()) << ' ' << num(q[i + 2].x()) << ' ' << num(q[i + 2].y());
-        o << "\" stroke=\"" << color << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
-      }
+      for (const InkPiece& piece : ink_pieces(ink))
+        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color << "\" stroke-width=\""
+          << num(piece.width) << "\"/>\n";
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
       o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
         << "\" stroke=\"none\"/>\n";

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 
 namespace wisp::render {
 
@@ -12,12 +13,12 @@ ProgressBar::ProgressBar(std::string label, int total, std::FILE* out)
       total_(std::max(total, 1)),
       out_(out),
       tty_(isatty(fileno(out)) != 0),
-      start_(std::chrono::steady_clock::now()),
+      start_(diffusion::Clock::now()),
       last_print_(start_) {}
 
 void ProgressBar::update(int done) {
   done_ = std::clamp(done, 0, total_);
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = diffusion::Clock::now();
   const double since = std::chrono::duration<double>(now - last_print_).count();
   // Redraw at 10 Hz on a terminal; a plain line every 5 s elsewhere.
   if (since < (tty_ ? 0.1 : 5.0) && done_ < total_) return;
@@ -32,8 +33,7 @@ void ProgressBar::finish() {
 }
 
 void ProgressBar::print(bool final_line) {
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = diffusion::seconds_since(start_);
   const double rate = elapsed > 0 ? done_ / elapsed : 0.0;
   const double eta = rate > 0 ? (total_ - done_) / rate : 0.0;
   if (tty_) {

@@ -3,9 +3,10 @@
 // every few seconds, so piped output stays readable.
 #pragma once
 
-#include <chrono>
 #include <cstdio>
 #include <string>
+
+#include "diffusion/timer.hpp"
 
 namespace wisp::render {
 
@@ -22,7 +23,7 @@ class ProgressBar {
   int total_;
   std::FILE* out_;
   bool tty_;
-  std::chrono::steady_clock::time_point start_, last_print_;
+  diffusion::Clock::time_point start_, last_print_;
   int done_ = 0;
   bool finished_ = false;
   void print(bool final_line);

@@ -2,21 +2,18 @@
 #include "apps/render/render_pipeline.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "diffusion/antialias.hpp"
 #include "diffusion/rasterize.hpp"
-#include "vector/bezier.hpp"
+#include "diffusion/timer.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/polygon.hpp"
 
 namespace wisp::render {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using diffusion::Clock;
+using diffusion::ms_since;
 
 // Flat SVGs: each wisp's front region with its inside colours as a gradient from root to tip,
 // read off its outline's stops: on the highlight side for Faraj's colour point (where the
@@ -63,19 +60,19 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
   InkStroke s;
   s.color = style.color;
-  s.closed = c.closed;
-  s.curve = c.points;
+  s.closed = c.closed();
+  s.curve.points = c.points;
   s.curve_width = c.width;
-  const int k = int(c.points.size() - 1) / 3;
-  for (int i = 0; i < k; ++i)
+  const int k = c.piece_count();
+  for (int i = 0; i < k; ++i) {
+    const diffusion::Cubic q = c.piece(i);
     for (int j = 0; j < 3; ++j) {
       const double u = j / 3.0, sp = (i + u) / k;
-      const vector::Cubic q{c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2],
-                            c.points[3 * i + 3]};
-      s.points.push_back(vector::eval(q, u));
+      s.points.push_back(diffusion::eval(q, u));
       s.width.push_back(vector::width_at(c.width, sp));
     }
-  if (!c.closed) {
+  }
+  if (!s.closed) {
     s.points.push_back(c.points.back());
     s.width.push_back(vector::width_at(c.width, 1.0));
   }
@@ -133,7 +130,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
   pic.background = setup.background;
   pic.body = std::move(body);
   pic.mask = r.arrangement.mask;
-  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back(w.outline.points);
+  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.outline.points});
   if (setup.flat_regions)
     pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
   if (setup.style.ink.enabled()) {

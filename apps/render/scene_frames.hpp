@@ -53,7 +53,7 @@ std::vector<BodyPolygon> frame_body(const SceneFrames& frames, int k);
 // the scene draws no body.
 std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k);
 
-// "WxH" -> (W, H), each side 1 to 16384. Throws std::invalid_argument naming `option`.
+// "WxH" -> (W, H), each side 1 to io::kMaxImageSide. Throws std::invalid_argument naming `option`.
 std::pair<int, int> parse_size(const std::string& option, const std::string& text);
 
 }  // namespace wisp::render

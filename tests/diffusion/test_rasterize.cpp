@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 #include <queue>
 
-#include "diffusion/bezier.hpp"
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
 #include "scenes.hpp"
@@ -15,7 +14,7 @@ namespace {
 
 // Signed side of point q relative to the flattened curve: > 0 on the left, (-d.y, d.x).
 double side_of(const DiffusionCurve& c, const Eigen::Vector2d& q) {
-  const auto poly = flatten_path(c.points, 0.001);
+  const auto poly = flatten(c, 0.001);
   double best = 1e18, side = 0;
   for (size_t k = 1; k < poly.size(); ++k) {
     const Eigen::Vector2d a = poly[k - 1].p, d = poly[k].p - a;
@@ -94,7 +93,7 @@ TEST_CASE("every fixed pixel lies on the side whose colour it took, for crossing
       c = circle(pos(rng), pos(rng), rad(rng), Color(0, 0, 0), Color(0, 0, 0));
     } else {
       const Eigen::Vector2d a(pos(rng), pos(rng)), b(pos(rng), pos(rng));
-      c.points = {a, a + (b - a) / 3, a + 2 * (b - a) / 3, b};
+      c.append(line_cubic(a, b));
     }
     c.left = {{0, Color(k / 10.0f, 1.0f, 0.5f)}};
     c.right = {{0, Color(k / 10.0f, 0.0f, 0.5f)}};
@@ -174,7 +173,7 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
     const Problem p = rasterize({w}, 60, 40);
     const size_t n = p.pixel_count();
     // Inside test by the winding number of the finely flattened outline.
-    const auto poly = flatten_path(w.points, 1e-4);
+    const auto poly = flatten(w, 1e-4);
     const auto inside = [&](const Eigen::Vector2d& q) {
       int wn = 0;
       for (size_t k = 1; k < poly.size(); ++k) {

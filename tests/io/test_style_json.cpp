@@ -134,21 +134,22 @@ TEST_CASE("ink strokes become constant-width pieces within half a step of the wi
           "[io][style]") {
   wisp::render::InkStroke s;
   // Two cubics along x, the width falling linearly from 4 to 0 over the path.
-  s.curve = {{0, 0}, {10, 0}, {20, 0}, {30, 0}, {40, 0}, {50, 0}, {60, 0}};
+  s.curve.points = {{0, 0}, {10, 0}, {20, 0}, {30, 0}, {40, 0}, {50, 0}, {60, 0}};
   s.curve_width = {{0.0, 4.0}, {1.0, 0.0}};
   const double step = 0.25;
   const auto pieces = wisp::render::ink_pieces(s, step);
   REQUIRE(!pieces.empty());
   double prev_end = 0;
   for (const auto& p : pieces) {
-    REQUIRE(p.points.size() >= 4);
-    REQUIRE((p.points.size() - 1) % 3 == 0);
+    REQUIRE(p.piece_count() >= 1);
+    REQUIRE(p.points.size() == 3 * size_t(p.piece_count()) + 1);
     CHECK(p.width > 0);
     // Where the piece lies, the exact width (4 - x / 15) is within half a step of its width.
-    for (size_t i = 0; i < p.points.size(); i += 3) {
-      const double exact = 4 - p.points[i].x() / 15;
-      CHECK(std::abs(exact - p.width) <= step / 2 + step / 4);  // + the sub-interval's own change
-    }
+    for (int i = 0; i < p.piece_count(); ++i)
+      for (double x : {p.piece(i)[0].x(), p.piece(i)[3].x()}) {
+        const double exact = 4 - x / 15;
+        CHECK(std::abs(exact - p.width) <= step / 2 + step / 4);  // + the sub-interval's change
+      }
     CHECK(p.points.front().x() >= prev_end - 1e-9);
     prev_end = p.points.back().x();
   }
@@ -157,6 +158,6 @@ TEST_CASE("ink strokes become constant-width pieces within half a step of the wi
   s.curve_width = {{0.0, 2.0}, {1.0, 2.0}};
   const auto constant = wisp::render::ink_pieces(s, step);
   REQUIRE(constant.size() == 1);
-  CHECK(constant[0].points == s.curve);
+  CHECK(constant[0].points == s.curve.points);
   CHECK(constant[0].width == 2.0);
 }

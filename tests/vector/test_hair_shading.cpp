@@ -218,14 +218,14 @@ TEST_CASE("hard band edges lie inside their wisp, carry both bands and only show
     // Which wisp: the one whose outline holds most of it (they cross).
     int in1 = 0;
     for (int k = 0; k <= 20; ++k)
-      in1 += inside_outline(r.wisps[1], v::path_point(c.points, k / 20.0), 0);
+      in1 += inside_outline(r.wisps[1], wisp::diffusion::eval(c, k / 20.0), 0);
     int in0 = 0;
     for (int k = 0; k <= 20; ++k)
-      in0 += inside_outline(r.wisps[0], v::path_point(c.points, k / 20.0), 0);
+      in0 += inside_outline(r.wisps[0], wisp::diffusion::eval(c, k / 20.0), 0);
     const int w = in1 > in0 ? 1 : 0;
     for (int k = 0; k <= 200; ++k) {
       const double s = k / 200.0;
-      const Vector2d p = v::path_point(c.points, s);
+      const Vector2d p = wisp::diffusion::eval(c, s);
       CHECK(inside_outline(r.wisps[w], p, 0.15));
       bool active = false;
       for (const auto& iv : c.active) active |= s >= iv.first && s <= iv.second;

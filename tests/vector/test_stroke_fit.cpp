@@ -3,33 +3,33 @@
 #include <cmath>
 #include <random>
 
-#include "vector/bezier.hpp"
 #include "vector/stroke_fit.hpp"
 
 using Eigen::Vector2d;
+using wisp::diffusion::BezierPath;
+using wisp::diffusion::eval;
 using wisp::vector::fit_cubics;
 using wisp::vector::FitOptions;
-using wisp::vector::path_point;
 
 namespace {
 
 // Distance from p to the path, by dense sampling plus a local refinement.
-double distance_to_path(const std::vector<Vector2d>& path, const Vector2d& p) {
+double distance_to_path(const BezierPath& path, const Vector2d& p) {
   const int n = 4000;
   double best = 1e300, best_s = 0;
   for (int i = 0; i <= n; ++i) {
-    const double d = (path_point(path, double(i) / n) - p).norm();
+    const double d = (eval(path, double(i) / n) - p).norm();
     if (d < best) best = d, best_s = double(i) / n;
   }
   double lo = std::max(0.0, best_s - 1.0 / n), hi = std::min(1.0, best_s + 1.0 / n);
   for (int k = 0; k < 60; ++k) {  // ternary search near the best sample
     const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
-    if ((path_point(path, a) - p).norm() < (path_point(path, b) - p).norm())
+    if ((eval(path, a) - p).norm() < (eval(path, b) - p).norm())
       hi = b;
     else
       lo = a;
   }
-  return std::min(best, (path_point(path, 0.5 * (lo + hi)) - p).norm());
+  return std::min(best, (eval(path, 0.5 * (lo + hi)) - p).norm());
 }
 
 // Distance from p to a polyline.
@@ -62,41 +62,38 @@ TEST_CASE("fitted cubics pass within the tolerance of every input point", "[vect
       FitOptions o;
       o.tolerance = tol;
       const auto fit = fit_cubics(pts, o);
-      INFO("tolerance " << tol << " trial " << trial << " cubics " << fit.cubic_count());
-      REQUIRE(fit.cubic_count() >= 1);
+      INFO("tolerance " << tol << " trial " << trial << " cubics " << fit.piece_count());
+      REQUIRE(fit.piece_count() >= 1);
       REQUIRE(fit.param.size() == pts.size());
       CHECK(fit.points.front() == pts.front());
       CHECK(fit.points.back() == pts.back());
       double worst_at_param = 0, worst_distance = 0, worst_back = 0;
       for (size_t i = 0; i < pts.size(); ++i) {
-        worst_at_param =
-            std::max(worst_at_param, (path_point(fit.points, fit.param[i]) - pts[i]).norm());
-        if (i % 7 == 0)
-          worst_distance = std::max(worst_distance, distance_to_path(fit.points, pts[i]));
+        worst_at_param = std::max(worst_at_param, (eval(fit, fit.param[i]) - pts[i]).norm());
+        if (i % 7 == 0) worst_distance = std::max(worst_distance, distance_to_path(fit, pts[i]));
         if (i > 0) CHECK(fit.param[i] >= fit.param[i - 1]);
       }
       // And the path stays near the polyline between the points (no overshoot).
       for (int i = 0; i <= 600; ++i)
-        worst_back =
-            std::max(worst_back, distance_to_polyline(pts, path_point(fit.points, i / 600.0)));
+        worst_back = std::max(worst_back, distance_to_polyline(pts, eval(fit, i / 600.0)));
       CHECK(worst_at_param <= tol * (1 + 1e-9));
       CHECK(worst_distance <= tol * (1 + 1e-9));
       CHECK(worst_back <= tol + 0.01);
       // Compression: far fewer cubics than segments.
-      if (tol >= 0.2) CHECK(fit.cubic_count() < 30);
+      if (tol >= 0.2) CHECK(fit.piece_count() < 30);
     }
   }
 }
 
 TEST_CASE("points of one cubic are fitted by one cubic", "[vector][fit]") {
-  const wisp::vector::Cubic c{Vector2d(0, 0), Vector2d(30, 80), Vector2d(90, -40),
-                              Vector2d(120, 30)};
+  const wisp::diffusion::Cubic c{Vector2d(0, 0), Vector2d(30, 80), Vector2d(90, -40),
+                                 Vector2d(120, 30)};
   std::vector<Vector2d> pts;
-  for (int i = 0; i <= 100; ++i) pts.push_back(wisp::vector::eval(c, i / 100.0));
+  for (int i = 0; i <= 100; ++i) pts.push_back(eval(c, i / 100.0));
   FitOptions o;
   o.tolerance = 0.05;
   const auto fit = fit_cubics(pts, o);
-  CHECK(fit.cubic_count() == 1);
+  CHECK(fit.piece_count() == 1);
 }
 
 TEST_CASE("corners are kept as knots, loops close, degenerate input is safe", "[vector][fit]") {
@@ -107,8 +104,9 @@ TEST_CASE("corners are kept as knots, loops close, degenerate input is safe", "[
   for (int i = 0; i <= 20; ++i) l.emplace_back(i, 0);
   for (int i = 1; i <= 20; ++i) l.emplace_back(20, i);
   auto fit = fit_cubics(l, o);
-  CHECK(fit.cubic_count() == 2);
+  CHECK(fit.piece_count() == 2);
   CHECK((fit.points[3] - Vector2d(20, 0)).norm() < 1e-12);
+  CHECK(!fit.closed());
 
   // A circle as a loop: closed path, every point within the tolerance.
   std::vector<Vector2d> circle;
@@ -116,15 +114,16 @@ TEST_CASE("corners are kept as knots, loops close, degenerate input is safe", "[
     circle.emplace_back(50 + 30 * std::cos(2 * M_PI * i / 120),
                         50 + 30 * std::sin(2 * M_PI * i / 120));
   fit = fit_cubics(circle, o, true);
-  REQUIRE(fit.cubic_count() >= 2);
-  CHECK((fit.points.front() - fit.points.back()).norm() < 1e-12);
+  REQUIRE(fit.piece_count() >= 2);
+  CHECK(fit.closed());
   for (size_t i = 0; i < circle.size(); ++i)
-    CHECK((path_point(fit.points, fit.param[i]) - circle[i]).norm() <= 0.1 + 1e-9);
+    CHECK((eval(fit, fit.param[i]) - circle[i]).norm() <= 0.1 + 1e-9);
 
   // Duplicates, two points, one point.
   fit = fit_cubics({Vector2d(1, 1), Vector2d(1, 1), Vector2d(5, 1), Vector2d(5, 1)}, o);
-  CHECK(fit.cubic_count() == 1);
+  CHECK(fit.piece_count() == 1);
   CHECK(fit.param == std::vector<double>{0, 0, 1, 1});
-  CHECK(fit_cubics({Vector2d(1, 1), Vector2d(1, 1)}, o).cubic_count() == 0);
-  CHECK(fit_cubics({Vector2d(1, 1)}, o).cubic_count() == 0);
+  CHECK(fit_cubics({Vector2d(1, 1), Vector2d(1, 1)}, o).piece_count() == 0);
+  CHECK(!fit_cubics({Vector2d(1, 1), Vector2d(5, 1)}, o, true).closed());  // a "loop" of two
+  CHECK(fit_cubics({Vector2d(1, 1)}, o).piece_count() == 0);
 }

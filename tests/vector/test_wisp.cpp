@@ -4,10 +4,12 @@
 #include <cmath>
 
 #include "tests/vector/scenes.hpp"
-#include "vector/bezier.hpp"
+#include "vector/catmull_rom.hpp"
 #include "vector/wisp.hpp"
 
 using namespace wisp;
+using diffusion::derivative;
+using diffusion::eval;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
@@ -52,22 +54,28 @@ vector::WispStyle wide() {
 TEST_CASE("centre spline is the centripetal Catmull-Rom spline through the samples",
           "[vector][wisp]") {
   const std::vector<Vector2d> p = {{10, 10}, {40, 12}, {45, 60}, {90, 70}, {91, 71}, {150, 20}};
-  const auto spans = vector::catmull_rom_spans(p);
-  REQUIRE(spans.size() == p.size() - 1);
-  for (size_t i = 0; i < spans.size(); ++i) {
-    CHECK(spans[i][0] == p[i]);
-    CHECK(spans[i][3] == p[i + 1]);
-    if (i == 0 || i + 2 >= p.size()) continue;  // interior spans: compare with the pyramid
+  const diffusion::BezierPath path = vector::catmull_rom_path(p);
+  const int spans = path.piece_count();
+  REQUIRE(spans == int(p.size()) - 1);
+  for (int i = 0; i < spans; ++i) {
+    const diffusion::Cubic span = path.piece(i);
+    CHECK(span[0] == p[i]);
+    CHECK(span[3] == p[i + 1]);
+    if (i == 0 || i + 2 >= int(p.size())) continue;  // interior spans: compare with the pyramid
     for (double u : {0.1, 0.37, 0.5, 0.81})
-      CHECK((vector::eval(spans[i], u) - barry_goldman(p[i - 1], p[i], p[i + 1], p[i + 2], u))
-                .norm() < 1e-9);
+      CHECK((eval(span, u) - barry_goldman(p[i - 1], p[i], p[i + 1], p[i + 2], u)).norm() < 1e-9);
   }
   // G1 joints: the tangent direction does not jump between spans.
-  for (size_t i = 0; i + 1 < spans.size(); ++i) {
-    const Vector2d a = vector::derivative(spans[i], 1).normalized();
-    const Vector2d b = vector::derivative(spans[i + 1], 0).normalized();
+  for (int i = 0; i + 1 < spans; ++i) {
+    const Vector2d a = derivative(path.piece(i), 1).normalized();
+    const Vector2d b = derivative(path.piece(i + 1), 0).normalized();
     CHECK((a - b).norm() < 1e-9);
   }
+  // Two points: one straight span.
+  const diffusion::Cubic line = vector::catmull_rom_path({{0, 0}, {9, 3}}).piece(0);
+  CHECK(std::abs(cross(line[1] - line[0], Vector2d(9, 3))) < 1e-9);
+  CHECK(std::abs(cross(line[2] - line[0], Vector2d(9, 3))) < 1e-9);
+  CHECK(vector::catmull_rom_path({{1, 1}}).piece_count() == 0);
 }
 
 TEST_CASE("centre spline carries depth, tangent and strand parameter per control point",
@@ -125,8 +133,8 @@ TEST_CASE("outline is closed root to tip to root with the interior at winding +1
   const auto w = vector::build_wisp(s, 800, wide());
   REQUIRE(w);
   const auto& o = w->outline;
-  REQUIRE(o.points.size() == 3 * size_t(o.cubic_count()) + 1);
-  CHECK(o.points.front() == o.points.back());
+  REQUIRE(o.side.size() == size_t(o.piece_count()));
+  CHECK(o.closed());
   // Left side root to tip, then right side back, then the root cap (Faraj's taper: no tip cap).
   CHECK(o.side.front() == vector::Side::Left);
   CHECK(o.side.back() == vector::Side::Root);
@@ -151,9 +159,9 @@ TEST_CASE("band sections stay within the flattening tolerance of the outline cub
   for (const auto& w : vector::build_wisps(frame, style)) {
     // Every outline cubic point lies near the polygon.
     const auto poly = vector::outline_polygon(w);
-    for (int i = 0; i < w.outline.cubic_count(); ++i)
+    for (int i = 0; i < w.outline.piece_count(); ++i)
       for (double u : {0.25, 0.5, 0.75}) {
-        const Vector2d p = vector::eval(w.outline.cubic(i), u);
+        const Vector2d p = eval(w.outline.piece(i), u);
         double best = INFINITY;
         for (size_t k = 0; k < poly.size(); ++k) {
           const Vector2d a = poly[k].p, b = poly[(k + 1) % poly.size()].p;
@@ -177,9 +185,9 @@ TEST_CASE("width limit keeps each side inside the nearby centres of curvature", 
   const auto w = vector::build_wisp(s, 800, style);
   REQUIRE(w);
   bool limited = false;
-  for (int i = 0; i < w->centre.span_count(); ++i) {
-    const auto c = w->centre.span(i);
-    const Vector2d d1 = vector::derivative(c, 0), d2 = vector::second_derivative(c, 0);
+  for (int i = 0; i < w->centre.piece_count(); ++i) {
+    const diffusion::Cubic c = w->centre.piece(i);
+    const Vector2d d1 = derivative(c, 0), d2 = diffusion::second_derivative(c, 0);
     const double radius = std::pow(d1.norm(), 3) / std::abs(cross(d1, d2));
     // Turning counter-clockwise in (x, y) puts the centre of curvature on the right side.
     const double concave = cross(d1, d2) > 0 ? w->half_width_right[i] : w->half_width_left[i];
@@ -226,7 +234,7 @@ TEST_CASE("nearly coincident samples are merged, the tip sample kept", "[vector]
   s.visible.insert(s.visible.begin() + 3, 1);
   const auto w = vector::build_wisp(s, 800, wide());
   REQUIRE(w);
-  CHECK(w->centre.span_count() == 5);
+  CHECK(w->centre.piece_count() == 5);
   CHECK(w->centre.points.back() == Vector2d(100, 50));
 }
 
