@@ -120,7 +120,9 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
 }
 
 // Finest level: the negative 5-point Laplacian over open links, restricted to free pixels.
-// The diagonal counts every open link (also those to fixed pixels, whose values are data).
+// The diagonal counts every open link (also those to fixed pixels, whose values are data) and the
+// pixel's anchor weight: an anchor is a link to a neighbour that holds data. The Galerkin coarse
+// levels and the smoother see anchors through the diagonal only.
 template <int NC>
 void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
   const Problem& p = problem_;
@@ -143,8 +145,8 @@ void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
       const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
       if (!fixed[i]) {
         L.alive[k] = 1;
-        L.diag[k] = float(open_e + open_s + open_w + open_n);
-        L.inv_diag[k] = 1.0f / L.diag[k];  // > 0: a free reached pixel has an open link
+        L.diag[k] = float(open_e + open_s + open_w + open_n) + p.anchor_weight[i];
+        L.inv_diag[k] = 1.0f / L.diag[k];  // > 0: a free reached pixel is anchored or linked
         if (open_e && !fixed[i + 1]) L.ae[k] = 1.0f;
         if (open_s && !fixed[i + p.width]) L.as[k] = 1.0f;
       }
@@ -750,9 +752,9 @@ void Multigrid<NC>::setup() {
 }
 
 // r = b - A u on the free pixels of the finest level, in double precision, where b = -g plus the
-// fixed neighbours' values and u holds every pixel (fixed ones at their values). r_padded
-// receives r in the levels' float layout. Returns the per-channel norms of r and, in b_norms,
-// those of b.
+// fixed neighbours' values plus the anchor w_p a_p, and u holds every pixel (fixed ones at their
+// values). r_padded receives r in the levels' float layout. Returns the per-channel norms of r
+// and, in b_norms, those of b.
 template <int NC>
 template <class T>
 std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
@@ -772,10 +774,15 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
             (p.links[i] & kOpenEast) != 0, x > 0 && (p.links[i - 1] & kOpenEast) != 0,
             (p.links[i] & kOpenSouth) != 0, y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
         const size_t nb[4] = {i + 1, i - 1, i + p.width, i - p.width};
+        const double w = p.anchor_weight[i];
         for (int c = 0; c < NC; ++c) {
           const T* uc = &u[c * np];
           double b = p.rhs.empty() ? 0.0 : -double(p.rhs[c * np + i]);
           double au = 0;
+          if (w > 0) {
+            au += w * uc[i];
+            b += w * p.value[c * np + i];
+          }
           for (int q = 0; q < 4; ++q)
             if (open[q]) {
               au += uc[i];

@@ -3,15 +3,18 @@
 //
 // Formulation. With u0 the initial guess (fixed pixels hold their colours), the solver computes
 // the residual r0 = b - A u0 once and then solves the correction equation A e = r0 on the free
-// pixels only (e = 0 on fixed pixels), A being the negative Laplacian over open links.
+// pixels only (e = 0 on fixed pixels), A being the negative Laplacian over open links plus the
+// anchor weights on the diagonal (problem.hpp): symmetric positive definite on each region that
+// a fixed or anchored pixel reaches.
 //
 // Coarse levels (Dendy's black-box multigrid, "Black box multigrid", J. Comput. Phys. 48, 1982):
 // vertex-centred standard coarsening (coarse point (I,J) sits on fine pixel (2I,2J)), an
 // operator-dependent prolongation P built from each fine pixel's own stencil, restriction P^T,
 // and Galerkin coarse operators A_c = P^T A P (9-point stencils). P never interpolates across a
-// cut link and is zero on fixed pixels, so coarse levels keep the meaning of the constraints:
-// a barrier stays a barrier and a Dirichlet curve still pins the correction on every level,
-// however thin it is. A coarse point whose fine pixel is fixed is itself fixed.
+// cut link and is zero on fixed pixels, and anchors enter the Galerkin products through the
+// finest diagonal, so coarse levels keep the meaning of the constraints: a barrier stays a
+// barrier and a Dirichlet curve still pins the correction on every level, however thin it is.
+// A coarse point whose fine pixel is fixed is itself fixed.
 //
 // Cycle. Full multigrid (FMG) start, then V(2,2) cycles until the relative residual
 // ||b - A u|| / ||b|| of every channel is below the tolerance (accelerated by conjugate
@@ -22,7 +25,7 @@
 // fixed order, so the result does not depend on the number of threads. The coarsest level
 // (<= 64 points) is solved exactly with a dense LDLT.
 //
-// Pixels in a region that no Dirichlet pixel reaches (sealed by Neumann barriers) have no
+// Pixels in a region that no fixed or anchored pixel reaches (sealed by Neumann barriers) have no
 // defined value; they are reported in the statistics and set to 0.
 #pragma once
 

@@ -15,6 +15,7 @@ Problem make_open_problem(int width, int height, int channels) {
   const size_t n = p.pixel_count();
   p.fixed.assign(n, 0);
   p.links.assign(n, 0);
+  p.anchor_weight.assign(n, 0.0f);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       p.links[p.index(x, y)] =
@@ -50,10 +51,13 @@ void add_gradient_field(Problem& p, const std::vector<float>& wx, const std::vec
 
 std::vector<std::uint8_t> reached_from_fixed(const Problem& p) {
   const int W = p.width, H = p.height;
-  std::vector<std::uint8_t> reached(p.fixed);
+  std::vector<std::uint8_t> reached(p.pixel_count(), 0);
   std::vector<int> stack;
   for (size_t i = 0; i < p.pixel_count(); ++i)
-    if (p.fixed[i]) stack.push_back(int(i));
+    if (p.fixed[i] || p.anchor_weight[i] > 0) {
+      reached[i] = 1;
+      stack.push_back(int(i));
+    }
   while (!stack.empty()) {
     const int i = stack.back();
     stack.pop_back();
@@ -79,11 +83,18 @@ void check_problem(const Problem& p) {
   if (p.channels < 1 || p.channels > 4)
     throw std::invalid_argument("problem: channels must be 1 to 4");
   const size_t n = p.pixel_count();
-  if (p.fixed.size() != n || p.links.size() != n || p.value.size() != n * p.channels ||
-      (!p.rhs.empty() && p.rhs.size() != n * p.channels))
+  if (p.fixed.size() != n || p.links.size() != n || p.anchor_weight.size() != n ||
+      p.value.size() != n * p.channels || (!p.rhs.empty() && p.rhs.size() != n * p.channels))
     throw std::invalid_argument("problem: array sizes do not match the image size");
   for (float v : p.value)
-    if (!std::isfinite(v)) throw std::invalid_argument("problem: a fixed value is not finite");
+    if (!std::isfinite(v))
+      throw std::invalid_argument("problem: a fixed or anchor value is not finite");
+  for (size_t i = 0; i < n; ++i) {
+    const float w = p.anchor_weight[i];
+    if (!(w >= 0 && std::isfinite(w)))
+      throw std::invalid_argument("problem: an anchor weight is negative or not finite");
+    if (w > 0 && p.fixed[i]) throw std::invalid_argument("problem: a fixed pixel has an anchor");
+  }
   for (float v : p.rhs)
     if (!std::isfinite(v)) throw std::invalid_argument("problem: a right-hand side is not finite");
   for (int y = 0; y < p.height; ++y) {

@@ -1,37 +1,49 @@
-// Rasterizer: curve crossings of pixel links -> cut links, fixed colours, gradient field.
-// The sampling rule is documented in rasterize.hpp.
+// Rasterizer: curve crossings of pixel links -> cut links, anchored or fixed colours, gradient
+// field. The sampling rule is documented in rasterize.hpp.
+//
+// Claims are collected in a list as the curves are walked (memory in proportion to the crossings,
+// not to the image), then sorted by pixel so that each pixel's nearest claim per link (or
+// overall, in the first-order mode) is the first of its group; ties keep the drawing order.
 #include "diffusion/rasterize.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
+#include <cstdint>
 
 #include "diffusion/bezier.hpp"
 
 namespace wisp::diffusion {
 namespace {
 
+// The Dirichlet side of a curve faces a pixel across one of its links.
+struct Claim {
+  std::uint64_t slot;  // pixel index * 4 + direction of the link (0 east, 1 west, 2 south, 3 north)
+  double t;            // curve parameter at the crossing
+  float distance;      // from the pixel centre to the crossing, in link lengths: theta
+  std::uint32_t side;  // curve index * 2 + 1 for its left side, + 0 for its right
+};
+
 struct Rasterizer {
+  const std::vector<DiffusionCurve>& curves;
   Problem& problem;
-  std::vector<float> claim_distance;  // W*H: distance of the nearest Dirichlet claim so far
-  std::vector<float> wx, wy;          // gradient field of gradient curves (allocated on demand)
+  std::vector<Claim> claims;
+  std::vector<float> wx, wy;  // gradient field of gradient curves (allocated on demand)
 
   int width() const { return problem.width; }
   int height() const { return problem.height; }
 
   bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width() && y < height(); }
 
-  // Pixel (x,y) is on `side_is_left` of the curve at parameter t, `distance` from the crossing.
-  void claim(const DiffusionCurve& c, int x, int y, bool side_is_left, double t, float distance) {
+  // Pixel (x,y) is on `side_is_left` of curve k at parameter t, `distance` from the crossing on
+  // its link in `direction`.
+  void claim(std::uint32_t k, int x, int y, int direction, bool side_is_left, double t,
+             float distance) {
+    const DiffusionCurve& c = curves[k];
     if (!inside(x, y)) return;
     if ((side_is_left ? c.left_boundary : c.right_boundary) != Boundary::Dirichlet) return;
-    const size_t i = problem.index(x, y);
-    if (distance >= claim_distance[i]) return;
-    claim_distance[i] = distance;
-    problem.fixed[i] = 1;
-    const Color col = color_at(side_is_left ? c.left : c.right, t);
-    const size_t n = problem.pixel_count();
-    for (int k = 0; k < 3; ++k) problem.value[k * n + i] = col[k];
-    if (problem.channels == 4) problem.value[3 * n + i] = blur_at(c.blur, t);
+    claims.push_back(
+        {problem.index(x, y) * 4 + std::uint64_t(direction), t, distance, 2 * k + side_is_left});
   }
 
   // Colour jump across a gradient curve, from the pixel on `from_left` side to the other one.
@@ -44,9 +56,10 @@ struct Rasterizer {
   }
 
   // A crossing of the link from pixel a = (ax,ay) to b = (ax+dx, ay+dy) at fraction f in [0,1)
-  // along it; `a_is_left` says which side of the curve a lies on.
-  void crossing(const DiffusionCurve& c, int ax, int ay, int dx, int dy, double f, bool a_is_left,
+  // along it; `a_is_left` says which side of curve k a lies on.
+  void crossing(std::uint32_t k, int ax, int ay, int dx, int dy, double f, bool a_is_left,
                 double t) {
+    const DiffusionCurve& c = curves[k];
     const int bx = ax + dx, by = ay + dy;
     const bool link_inside = inside(ax, ay) && inside(bx, by);
     if (c.gradient_only) {
@@ -54,8 +67,8 @@ struct Rasterizer {
       return;
     }
     if (link_inside) problem.links[problem.index(ax, ay)] &= dx ? ~kOpenEast : ~kOpenSouth;
-    claim(c, ax, ay, a_is_left, t, float(f));
-    claim(c, bx, by, !a_is_left, t, float(1.0 - f));
+    claim(k, ax, ay, dx ? 0 : 2, a_is_left, t, float(f));
+    claim(k, bx, by, dx ? 1 : 3, !a_is_left, t, float(1.0 - f));
   }
 
   bool active(const DiffusionCurve& c, double t) const {
@@ -65,8 +78,9 @@ struct Rasterizer {
     return false;
   }
 
-  // All crossings of one polyline edge with the lines through pixel centres.
-  void edge(const DiffusionCurve& c, const PathSample& s0, const PathSample& s1) {
+  // All crossings of one polyline edge of curve k with the lines through pixel centres.
+  void edge(std::uint32_t k, const PathSample& s0, const PathSample& s1) {
+    const DiffusionCurve& c = curves[k];
     const Eigen::Vector2d p0 = s0.p, p1 = s1.p, d = p1 - p0;
     // Horizontal links lie on rows y = j + 0.5. Half-open rule: min <= y < max.
     if (d.y() != 0) {
@@ -81,7 +95,7 @@ struct Rasterizer {
         const double fx = std::floor(x - 0.5);
         if (fx < -1 || fx > width() - 1) continue;
         // Pixel a = (i, j) lies towards -x of the crossing: on the left, (-d.y, d.x), iff d.y > 0.
-        crossing(c, int(fx), j, 1, 0, x - 0.5 - fx, d.y() > 0, t);
+        crossing(k, int(fx), j, 1, 0, x - 0.5 - fx, d.y() > 0, t);
       }
     }
     // Vertical links lie on columns x = i + 0.5.
@@ -97,9 +111,71 @@ struct Rasterizer {
         const double fy = std::floor(y - 0.5);
         if (fy < -1 || fy > height() - 1) continue;
         // Pixel a = (i, j) lies towards -y of the crossing: on the left iff d.x < 0.
-        crossing(c, i, int(fy), 0, 1, y - 0.5 - fy, d.x() < 0, t);
+        crossing(k, i, int(fy), 0, 1, y - 0.5 - fy, d.x() < 0, t);
       }
     }
+  }
+
+  // The colour (and blur) of the side that makes the claim, at its crossing.
+  std::array<double, 4> value(const Claim& c) const {
+    const DiffusionCurve& curve = curves[c.side / 2];
+    const Color col = color_at(c.side & 1 ? curve.left : curve.right, c.t);
+    return {col[0], col[1], col[2], problem.channels == 4 ? blur_at(curve.blur, c.t) : 0.0f};
+  }
+
+  void set_value(size_t pixel, const std::array<double, 4>& v) {
+    const size_t n = problem.pixel_count();
+    for (int k = 0; k < problem.channels; ++k) problem.value[k * n + pixel] = float(v[k]);
+  }
+
+  // Sorts the claims by pixel, then distance (then drawing order: the sort is stable), and calls
+  // pixel_claims(pixel, first, last) for each pixel's run: claims[first] is its nearest claim,
+  // and the first claim of each link direction in the run is the nearest on that link.
+  template <class PixelClaims>
+  void for_each_pixel(const PixelClaims& pixel_claims) {
+    std::stable_sort(claims.begin(), claims.end(), [](const Claim& a, const Claim& b) {
+      return a.slot / 4 != b.slot / 4 ? a.slot < b.slot : a.distance < b.distance;
+    });
+    for (size_t first = 0; first < claims.size();) {
+      const size_t pixel = claims[first].slot / 4;
+      size_t last = first + 1;
+      while (last < claims.size() && claims[last].slot / 4 == pixel) ++last;
+      pixel_claims(pixel, first, last);
+      first = last;
+    }
+  }
+
+  void fix(size_t pixel, const Claim& c) {
+    problem.fixed[pixel] = 1;
+    set_value(pixel, value(c));
+  }
+
+  // First order: a pixel is fixed to its nearest claim.
+  void fix_nearest() {
+    for_each_pixel([&](size_t pixel, size_t first, size_t) { fix(pixel, claims[first]); });
+  }
+
+  // Second order: the nearest claim on each of a pixel's links is an anchor at distance theta,
+  // weighing 1/theta (problem.hpp). A claim almost at the centre fixes the pixel instead.
+  void anchor() {
+    for_each_pixel([&](size_t pixel, size_t first, size_t last) {
+      if (claims[first].distance < kMinAnchorDistance) return fix(pixel, claims[first]);
+      double weight = 0;
+      std::array<double, 4> sum{};
+      bool seen[4] = {false, false, false, false};
+      for (size_t k = first; k < last; ++k) {
+        const int direction = int(claims[k].slot % 4);
+        if (seen[direction]) continue;  // a farther claim on the same link: hidden
+        seen[direction] = true;
+        const double w = 1.0 / claims[k].distance;
+        const std::array<double, 4> v = value(claims[k]);
+        weight += w;
+        for (int c = 0; c < 4; ++c) sum[c] += w * v[c];
+      }
+      problem.anchor_weight[pixel] = float(weight);
+      for (double& v : sum) v /= weight;
+      set_value(pixel, sum);
+    });
   }
 };
 
@@ -108,14 +184,15 @@ struct Rasterizer {
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
                   const RasterizeOptions& options) {
   Problem problem = make_open_problem(width, height, options.blur_channel ? 4 : 3);
-  Rasterizer r{problem,
-               std::vector<float>(problem.pixel_count(), std::numeric_limits<float>::infinity()),
-               {},
-               {}};
-  for (const DiffusionCurve& c : curves) {
-    const std::vector<PathSample> poly = flatten(c, options.flatten_tolerance);
-    for (size_t k = 1; k < poly.size(); ++k) r.edge(c, poly[k - 1], poly[k]);
+  Rasterizer r{curves, problem, {}, {}, {}};
+  for (std::uint32_t k = 0; k < curves.size(); ++k) {
+    const std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
+    for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);
   }
+  if (options.dirichlet == DirichletSampling::NearestClaim)
+    r.fix_nearest();
+  else
+    r.anchor();
   if (!r.wx.empty() || !r.wy.empty()) {
     const size_t n = problem.pixel_count() * problem.channels;
     r.wx.resize(n, 0.0f);

@@ -7,15 +7,24 @@
 //    into the other, however thin the feature (a closed curve that crosses the grid separates
 //    its inside from its outside in the link graph, by the Jordan curve theorem).
 //  - Each of the link's two pixels receives a claim from the side of the curve that faces it,
-//    at distance |pixel centre - crossing| along the link. A pixel takes the colour of its
-//    nearest Dirichlet claim (ties: the first curve in drawing order). Neumann sides claim
-//    nothing: they only cut.
+//    at distance theta = |pixel centre - crossing| along the link, in link lengths. Neumann sides
+//    claim nothing: they only cut. On each link only the nearest claim counts (ties: the first
+//    curve in drawing order); a Neumann side never hides a Dirichlet claim behind it.
+//  - Second order (DirichletSampling::ShortleyWeller, the default): a pixel with claims stays an
+//    unknown. Each link's claim acts as a neighbour at distance theta holding the side's colour
+//    c (the ghost point of Shortley and Weller, 1938), so the pixel's equation gains
+//    (c - u_p) / theta per claimed link: the anchor of problem.hpp, w_p = sum 1/theta and
+//    a_p = (sum c / theta) / w_p. The boundary sits where the curve is, to second order; a
+//    straight edge between parallel curves gives the exact linear profile. A claim closer than
+//    kMinAnchorDistance fixes the pixel to its colour instead, so that weights stay bounded.
+//  - First order (DirichletSampling::NearestClaim, for comparison): a pixel is fixed to the
+//    colour of its nearest claim over all its links. The boundary moves by up to a pixel.
 //  - A crossing whose second pixel lies outside the image still claims the inside pixel.
 //  - Thin features: where two curves (or the two sides of a thin wisp) cross the same link,
 //    each pixel takes the claim nearest to it, so it always gets the colour of the side that
 //    faces it; a feature thinner than the pixel spacing between two centres simply has no
 //    pixel inside it.
-//  - Gradient curves cut nothing and fix nothing: each crossing adds the colour jump across the
+//  - Gradient curves cut, anchor and fix nothing: each crossing adds the colour jump across the
 //    curve to the link's gradient field, and the problem's right-hand side becomes div w.
 //  - Only the curve's active parameter intervals take part.
 #pragma once
@@ -27,9 +36,16 @@
 
 namespace wisp::diffusion {
 
+enum class DirichletSampling { ShortleyWeller, NearestClaim };  // see the sampling rule above
+
+// Claims nearer to a pixel centre than this (link lengths) fix the pixel: the boundary moves by
+// less than it, and anchor weights stay below its inverse, so the operator stays well scaled.
+constexpr float kMinAnchorDistance = 1e-3f;
+
 struct RasterizeOptions {
   double flatten_tolerance = 0.01;  // pixels: how far the flattened polyline may stray
-  bool blur_channel = false;        // add each claim's blur sigma as a 4th channel
+  bool blur_channel = false;        // add each claim's blur sigma as a 4th channel (anchored too)
+  DirichletSampling dirichlet = DirichletSampling::ShortleyWeller;
 };
 
 // Curves must be valid (see validate()) and in pixel coordinates of a width x height image.

@@ -15,7 +15,7 @@ ReferenceResult solve_reference(const Problem& p, ReferenceMethod method, double
   const int W = p.width, H = p.height;
   const size_t n = p.pixel_count();
 
-  // Free pixels reached from a Dirichlet pixel get an unknown; the others are fixed to 0.
+  // Free pixels reached from a fixed or anchored pixel get an unknown; the others are set to 0.
   std::vector<int> unknown(n, -1);
   const std::vector<std::uint8_t> reached = reached_from_fixed(p);
   int m = 0;
@@ -43,7 +43,10 @@ ReferenceResult solve_reference(const Problem& p, ReferenceMethod method, double
         else if (p.fixed[nb[k]])
           for (int c = 0; c < p.channels; ++c) b(r, c) += p.value[c * n + nb[k]];
       }
-      triplets.emplace_back(r, r, double(degree));
+      const double w = p.anchor_weight[i];  // a link to the anchor value (problem.hpp)
+      if (w > 0)
+        for (int c = 0; c < p.channels; ++c) b(r, c) += w * p.value[c * n + i];
+      triplets.emplace_back(r, r, degree + w);
       if (!p.rhs.empty())
         for (int c = 0; c < p.channels; ++c) b(r, c) -= p.rhs[c * n + i];
     }

@@ -1,7 +1,7 @@
 // Exact and textbook solvers of the same discrete Problem, built on Eigen's sparse solvers. They
 // are the references of the accuracy tests and the peers of the solver benchmark: the system is
-// assembled from the Problem exactly as the multigrid sees it (free pixels that no Dirichlet
-// pixel reaches are set to 0 in both).
+// assembled from the Problem exactly as the multigrid sees it (free pixels that no fixed or
+// anchored pixel reaches are set to 0 in both).
 #pragma once
 
 #include <vector>

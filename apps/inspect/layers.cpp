@@ -183,7 +183,7 @@ void draw_constraints(cairo_t* cr, const InspectFrame& f, const ViewTransform& t
   const size_t n = p.pixel_count();
   std::vector<std::uint32_t> px(n, 0);
   for (size_t i = 0; i < n; ++i)
-    if (p.fixed[i])
+    if (p.fixed[i] || p.anchor_weight[i] > 0)  // anchored: in the anchor value (problem.hpp)
       px[i] = argb({to_byte(p.value[i]), to_byte(p.value[n + i]), to_byte(p.value[2 * n + i])});
   paint_raster(cr, px, p.width, p.height, t, opacity);
 

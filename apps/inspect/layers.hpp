@@ -31,7 +31,7 @@ enum class Layer : int {
   Faces,        // covered arrangement faces, coloured by their front-most wisp
   Coverage,     // number of wisps covering each face (heat map)
   Mask,         // the anti-aliased hair mask (white hair on black)
-  Constraints,  // fixed pixels of the solve in their colours (cut links too when zoomed in)
+  Constraints,  // fixed and anchored pixels in their values (cut links too when zoomed in)
   Residual,     // |b - A u| after a solver step, log scale
   Outlines,     // wisp outlines coloured by wisp id
   Visibility,   // visible (green) and hidden (red) outline pieces

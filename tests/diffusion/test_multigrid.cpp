@@ -195,8 +195,10 @@ TEST_CASE("conjugate-gradient acceleration converges where barriers nearly seal 
   const Solution s = solve_multigrid(p);
   CHECK(s.stats.converged);
   CHECK(s.stats.cycles <= 30);
-  INFO("plain V-cycles: " << slow.stats.cycles << ", accelerated: " << s.stats.cycles);
-  CHECK(slow.stats.cycles > 2 * s.stats.cycles);  // the hard case it is
+  INFO("plain V-cycles: " << slow.stats.cycles << " (converged " << slow.stats.converged
+                          << "), accelerated: " << s.stats.cycles);
+  // The hard case it is: plain cycles stall at the float32 floor or need many more cycles.
+  CHECK((!slow.stats.converged || slow.stats.cycles > 2 * s.stats.cycles));
 }
 
 TEST_CASE("the solution obeys the maximum principle", "[multigrid]") {
@@ -207,7 +209,7 @@ TEST_CASE("the solution obeys the maximum principle", "[multigrid]") {
   for (int c = 0; c < 3; ++c) {
     float lo = 1e9f, hi = -1e9f;
     for (size_t i = 0; i < n; ++i)
-      if (p.fixed[i]) {
+      if (p.fixed[i] || p.anchor_weight[i] > 0) {  // the data: fixed values and anchors
         lo = std::min(lo, p.value[c * n + i]);
         hi = std::max(hi, p.value[c * n + i]);
       }

@@ -1,10 +1,12 @@
-// Rasterizer: every fixed pixel gets the colour of the side of the curve it lies on, crossed
-// links are cut so that no colour leaks through a curve, Neumann sides fix nothing.
+// Rasterizer: every pixel next to a curve is anchored to (or, in the first-order mode, fixed to)
+// the colour of the side it lies on, crossed links are cut so that no colour leaks through a
+// curve, Neumann sides constrain nothing; the anchors make a second-order boundary.
 #include <catch2/catch.hpp>
 #include <queue>
 
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
+#include "diffusion/reference.hpp"
 #include "scenes.hpp"
 
 using namespace wisp::diffusion;
@@ -53,18 +55,35 @@ std::vector<std::uint8_t> flood(const Problem& p, int x, int y) {
   return seen;
 }
 
+// A pixel whose value the curves constrain: fixed, or anchored (second order).
+bool constrained(const Problem& p, size_t i) {
+  return p.fixed[i] || p.anchor_weight[i] > 0;
+}
+
+RasterizeOptions sampling(DirichletSampling rule) {
+  RasterizeOptions o;
+  o.dirichlet = rule;
+  return o;
+}
+
+// Both sampling rules, one per run of the test case (the first run is the second-order one).
+DirichletSampling either_rule() {
+  return GENERATE(DirichletSampling::ShortleyWeller, DirichletSampling::NearestClaim);
+}
+
 }  // namespace
 
-TEST_CASE("a circle fixes its inside colour inside and its outside colour outside", "[rasterize]") {
+TEST_CASE("a circle constrains its inside colour inside and its outside colour outside",
+          "[rasterize]") {
   const auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
-  const Problem p = rasterize({c}, 64, 64);
+  const Problem p = rasterize({c}, 64, 64, sampling(either_rule()));
   const size_t n = p.pixel_count();
   int inside = 0, outside = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       const size_t i = p.index(x, y);
-      if (!p.fixed[i]) continue;
-      // Only pixels next to the curve are fixed.
+      if (!constrained(p, i)) continue;
+      // Only pixels next to the curve are constrained.
       const double r = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
       CHECK(std::abs(r - 10) < 1.0);
       if (r < 10) {
@@ -81,6 +100,7 @@ TEST_CASE("a circle fixes its inside colour inside and its outside colour outsid
 
 TEST_CASE("every fixed pixel lies on the side whose colour it took, for crossing curves",
           "[rasterize]") {
+  // The first-order rule: one claim per pixel, so the colour names the curve and its side.
   // Straight segments and circles at random, crossing each other many times (none crosses
   // itself, so "the side of curve k" is well defined everywhere). Each side of each curve has
   // its own colour: (curve index / 10, 1 for left or 0 for right, 0.5).
@@ -99,7 +119,7 @@ TEST_CASE("every fixed pixel lies on the side whose colour it took, for crossing
     c.right = {{0, Color(k / 10.0f, 0.0f, 0.5f)}};
     curves.push_back(c);
   }
-  const Problem p = rasterize(curves, 96, 96);
+  const Problem p = rasterize(curves, 96, 96, sampling(DirichletSampling::NearestClaim));
   const size_t n = p.pixel_count();
   int fixed = 0;
   for (int y = 0; y < 96; ++y)
@@ -127,19 +147,20 @@ TEST_CASE("a closed curve cuts every link between its inside and its outside", "
   w.points.back() = w.points.front();
   w.left = {{0, Color(1, 0, 0)}};
   w.right = {{0, Color(0, 0, 1)}};
-  const Problem p = rasterize({w}, 100, 60);
+  const Problem p = rasterize({w}, 100, 60, sampling(either_rule()));
   const auto outside = flood(p, 0, 0);
   for (int y = 0; y < 60; ++y)
     for (int x = 0; x < 100; ++x) {
       const Eigen::Vector2d q(x + 0.5, y + 0.5);
       // The wisp runs root -> tip above and back below: inside is on its right side.
       if (outside[p.index(x, y)])
-        CHECK(!(side_of(w, q) < -0.05 && p.fixed[p.index(x, y)] && p.value[p.index(x, y)] == 1.0f));
+        CHECK(!(side_of(w, q) < -0.05 && constrained(p, p.index(x, y)) &&
+                p.value[p.index(x, y)] == 1.0f));
     }
   // And no inside (red) colour anywhere reachable from the outside through open links.
   const size_t n = p.pixel_count();
   for (size_t i = 0; i < n; ++i)
-    if (outside[i] && p.fixed[i]) CHECK(p.value[2 * n + i] == 1.0f);
+    if (outside[i] && constrained(p, i)) CHECK(p.value[2 * n + i] == 1.0f);
 }
 
 TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
@@ -153,14 +174,15 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
     w.right = {{0, Color(1, 0, 0)}};  // outside: red
     return w;
   };
+  const RasterizeOptions options = sampling(either_rule());
   SECTION("between two rows of pixel centres: no centre inside, two crossings per link") {
     const DiffusionCurve w = lens({{5, 20.75}, {20, 20.6}, {40, 20.6}, {55, 20.75}},
                                   {{5, 20.75}, {20, 20.9}, {40, 20.9}, {55, 20.75}});
-    const Problem p = rasterize({w}, 60, 40);
+    const Problem p = rasterize({w}, 60, 40, options);
     const size_t n = p.pixel_count();
     int above = 0, below = 0;
     for (size_t i = 0; i < n; ++i)
-      if (p.fixed[i]) {
+      if (constrained(p, i)) {
         CHECK(p.value[2 * n + i] == 0.0f);  // never the inside's blue
         (i / 60 == 20 ? above : below)++;
       }
@@ -170,7 +192,7 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
   SECTION("slanted: the inside colour only at centres that are inside") {
     const DiffusionCurve w = lens({{5, 19.85}, {20, 9.85}, {40, 29.85}, {55, 20}},
                                   {{5, 19.85}, {20, 10.15}, {40, 30.15}, {55, 20}});
-    const Problem p = rasterize({w}, 60, 40);
+    const Problem p = rasterize({w}, 60, 40, options);
     const size_t n = p.pixel_count();
     // Inside test by the winding number of the finely flattened outline.
     const auto poly = flatten(w, 1e-4);
@@ -186,7 +208,7 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
     };
     int blue = 0, red = 0;
     for (size_t i = 0; i < n; ++i)
-      if (p.fixed[i]) {
+      if (constrained(p, i)) {
         const bool is_blue = p.value[2 * n + i] == 1.0f;
         CHECK(is_blue == inside(Eigen::Vector2d(i % 60 + 0.5, i / 60 + 0.5)));
         (is_blue ? blue : red)++;
@@ -195,26 +217,26 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
   }
 }
 
-TEST_CASE("Neumann sides fix nothing but still cut", "[rasterize]") {
+TEST_CASE("Neumann sides constrain nothing but still cut", "[rasterize]") {
   auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
   c.right_boundary = Boundary::Neumann;
-  const Problem p = rasterize({c}, 64, 64);
+  const Problem p = rasterize({c}, 64, 64, sampling(either_rule()));
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
-      if (p.fixed[p.index(x, y)]) CHECK(std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 10);
+      if (constrained(p, p.index(x, y))) CHECK(std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 10);
   const auto outside = flood(p, 0, 0);
   CHECK(!outside[p.index(32, 32)]);
-  for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!(outside[i] && p.fixed[i]));
+  for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!(outside[i] && constrained(p, i)));
 }
 
 TEST_CASE("only the active parameter intervals constrain", "[rasterize]") {
   auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
   c.active = {{0.0, 0.5}};  // the lower half of the circle (angles 0..pi, y down)
-  const Problem p = rasterize({c}, 64, 64);
+  const Problem p = rasterize({c}, 64, 64, sampling(either_rule()));
   int upper = 0, lower = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
-      if (p.fixed[p.index(x, y)]) (y + 0.5 > 32 ? lower : upper)++;
+      if (constrained(p, p.index(x, y))) (y + 0.5 > 32 ? lower : upper)++;
   CHECK(lower > 30);
   CHECK(upper <= 2);  // at most the two end pixels of the half circle
   // The open upper half lets the inside and outside connect.
@@ -234,7 +256,7 @@ TEST_CASE("a gradient curve imposes its colour jump, not its colours", "[rasteri
   g.gradient_only = true;
   const Problem p = rasterize({frame, g}, 64, 64);
   CHECK(!p.rhs.empty());
-  CHECK(!p.fixed[p.index(32, 32)]);
+  CHECK(!constrained(p, p.index(32, 32)));
   SolverOptions opt;
   opt.tolerance = 1e-8;
   const Solution s = solve_multigrid(p, opt);
@@ -245,4 +267,171 @@ TEST_CASE("a gradient curve imposes its colour jump, not its colours", "[rasteri
       if (r > 13 && x > 3 && y > 3 && x < 61 && y < 61)
         CHECK(s.planes[p.index(x, y)] == Approx(0.2f).margin(1e-4));
     }
+}
+
+namespace {
+
+// A straight curve from a to b (a cubic with its control points on the line, so that flattening
+// is exact and the parameter runs uniformly).
+DiffusionCurve segment(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  DiffusionCurve c;
+  c.points = {a, a + (b - a) / 3, a + 2 * (b - a) / 3, b};
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("anchors weigh the inverse distance to the nearest crossing on each link",
+          "[rasterize]") {
+  // A closed triangle of straight pieces whose inside colour is the grey t (the path parameter)
+  // and whose outside is 0.9. The anchors are recomputed by intersecting each pixel's four links
+  // with the exact triangle.
+  const std::vector<Eigen::Vector2d> v = {{5.37, 6.81}, {41.23, 14.52}, {13.91, 37.16}};
+  DiffusionCurve tri;
+  tri.points = {v[0]};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector2d a = v[k], b = v[(k + 1) % 3];
+    tri.points.insert(tri.points.end(), {a + (b - a) / 3, a + 2 * (b - a) / 3, b});
+  }
+  tri.left = {{0, Color(0, 0, 0)}, {1, Color(1, 1, 1)}};
+  tri.right = {{0, Color(0.9f, 0.9f, 0.9f)}};
+  const Problem p = rasterize({tri}, 48, 48);
+  const size_t n = p.pixel_count();
+  int anchored = 0, mixed = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x) {
+      const Eigen::Vector2d c(x + 0.5, y + 0.5);
+      double weight = 0, sum = 0, nearest = 1;
+      int claims = 0;
+      for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0),
+                                       Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)}) {
+        // The nearest crossing of the link c -> c + d with an edge of the triangle.
+        double theta = 2, colour = 0;
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector2d a = v[k], e = v[(k + 1) % 3] - a;
+          const double den = d.x() * e.y() - d.y() * e.x();
+          if (den == 0) continue;
+          const Eigen::Vector2d ac = a - c;
+          const double s = (ac.x() * e.y() - ac.y() * e.x()) / den;  // along the link
+          const double u = (ac.x() * d.y() - ac.y() * d.x()) / den;  // along the edge
+          if (s < 0 || s >= 1 || u < 0 || u > 1 || s >= theta) continue;
+          theta = s;
+          const bool left = Eigen::Vector2d(-e.y(), e.x()).dot(c - a) > 0;
+          colour = left ? (k + u) / 3 : 0.9;
+        }
+        if (theta > 1) continue;
+        ++claims;
+        nearest = std::min(nearest, theta);
+        weight += 1 / theta;
+        sum += colour / theta;
+      }
+      const size_t i = p.index(x, y);
+      INFO("pixel " << x << "," << y);
+      REQUIRE(nearest >= kMinAnchorDistance);  // no pixel is fixed in this layout
+      CHECK(!p.fixed[i]);
+      if (claims == 0) {
+        CHECK(p.anchor_weight[i] == 0.0f);
+        continue;
+      }
+      ++anchored;
+      mixed += claims > 1;
+      CHECK(p.anchor_weight[i] == Approx(weight).epsilon(1e-5));
+      for (int ch = 0; ch < 3; ++ch)
+        CHECK(p.value[ch * n + i] == Approx(sum / weight).margin(1e-5));
+    }
+  CHECK(anchored > 150);
+  CHECK(mixed > 20);
+}
+
+TEST_CASE("a straight edge at a fractional position gives the exact linear profile",
+          "[rasterize]") {
+  // Two parallel lines across the image at x = 10.3 and 37.8 (or the same in y), colour and blur
+  // 0.1 / 1 on the first and 0.7 / 3 on the second: between them the exact solution is linear,
+  // and the second-order boundary reproduces it at every pixel, including those next to the
+  // lines. The first-order rule moves the boundary to pixel centres, off by up to 0.01 here.
+  const bool across_y = GENERATE(false, true);
+  const double a = 10.3, b = 37.8;
+  const auto line = [&](double at, float colour, float blur) {
+    DiffusionCurve c = segment({at, -1}, {at, 17});
+    if (across_y)
+      for (Eigen::Vector2d& q : c.points) q = Eigen::Vector2d(q.y(), q.x());
+    c.left = c.right = {{0, Color(colour, colour, colour)}};
+    c.blur = {{0, blur}};
+    return c;
+  };
+  const int w = across_y ? 16 : 48, h = across_y ? 48 : 16;
+  for (const DirichletSampling rule :
+       {DirichletSampling::ShortleyWeller, DirichletSampling::NearestClaim}) {
+    RasterizeOptions options = sampling(rule);
+    options.blur_channel = true;
+    const Problem p = rasterize({line(a, 0.1f, 1), line(b, 0.7f, 3)}, w, h, options);
+    SolverOptions tight;
+    tight.tolerance = 1e-10;
+    const Solution s = solve_multigrid(p, tight);
+    const ReferenceResult exact = solve_reference(p, ReferenceMethod::SimplicialLDLT);
+    const size_t n = p.pixel_count();
+    double error = 0, reference_error = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double at = (across_y ? y : x) + 0.5;
+        if (at < a || at > b) continue;
+        const double f = (at - a) / (b - a);
+        const size_t i = p.index(x, y);
+        for (int c = 0; c < 4; ++c) {
+          const double want = c < 3 ? 0.1 + 0.6 * f : 1 + 2 * f;
+          error = std::max(error, std::abs(s.planes[c * n + i] - want));
+          reference_error = std::max(reference_error, std::abs(exact.planes[c * n + i] - want));
+        }
+      }
+    INFO("across y " << across_y << ", first order " << (rule == DirichletSampling::NearestClaim)
+                     << ": error " << error << ", reference " << reference_error);
+    if (rule == DirichletSampling::ShortleyWeller) {
+      CHECK(error <= 2e-6);
+      CHECK(reference_error <= 2e-6);
+    } else {
+      CHECK(error >= 5e-3);
+    }
+  }
+}
+
+TEST_CASE("the second-order boundary converges at second order between two circles",
+          "[rasterize]") {
+  // Concentric circles r1 < r2 with colours c1, c2: between them u = c1 + (c2 - c1) ln(r/r1) /
+  // ln(r2/r1). The largest error at pixel centres between the circles must fall about 4x per
+  // doubling of the resolution; the first-order rule's falls about 2x.
+  const double c1 = 0.2, c2 = 0.8;
+  const auto max_error = [&](int size, DirichletSampling rule) {
+    const Eigen::Vector2d centre = size * Eigen::Vector2d(0.5013, 0.4987);
+    const double r1 = 0.2 * size, r2 = 0.43 * size;
+    const Color k1(c1, c1, c1), k2(c2, c2, c2);
+    RasterizeOptions options = sampling(rule);
+    options.flatten_tolerance = 1e-4;  // the geometry is the same circle at every size
+    const Problem p = rasterize({circle(centre.x(), centre.y(), r1, k1, k1, 16),
+                                 circle(centre.x(), centre.y(), r2, k2, k2, 16)},
+                                size, size, options);
+    const ReferenceResult u = solve_reference(p, ReferenceMethod::SimplicialLDLT);
+    double err = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const double r = (Eigen::Vector2d(x + 0.5, y + 0.5) - centre).norm();
+        if (r <= r1 || r >= r2) continue;
+        const double want = c1 + (c2 - c1) * std::log(r / r1) / std::log(r2 / r1);
+        err = std::max(err, std::abs(u.planes[p.index(x, y)] - want));
+      }
+    return err;
+  };
+  for (const DirichletSampling rule :
+       {DirichletSampling::ShortleyWeller, DirichletSampling::NearestClaim}) {
+    const double e64 = max_error(64, rule), e128 = max_error(128, rule),
+                 e256 = max_error(256, rule);
+    INFO("first order " << (rule == DirichletSampling::NearestClaim) << ": errors " << e64 << ", "
+                        << e128 << ", " << e256);
+    if (rule == DirichletSampling::ShortleyWeller) {
+      CHECK(e64 / e128 >= 3);
+      CHECK(e128 / e256 >= 3);
+    } else {
+      CHECK(e64 / e128 <= 2.5);
+      CHECK(e128 / e256 <= 2.5);
+    }
+  }
 }
