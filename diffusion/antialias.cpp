@@ -162,6 +162,40 @@ std::vector<std::array<std::array<int, 2>, 9>> neighbour_orders(int n) {
   return orders;
 }
 
+// The point of the local segments nearest to q: which segment, where along it, how far.
+struct NearestPoint {
+  const Segment* segment = nullptr;
+  double along = 0, distance = std::numeric_limits<double>::infinity();
+};
+
+NearestPoint nearest_point(const Vector2d& q, const std::vector<int>& local,
+                           const std::vector<Segment>& segments, int only_curve = -1) {
+  NearestPoint best;
+  for (int k : local) {
+    const Segment& g = segments[k];
+    if (only_curve >= 0 && g.curve != only_curve) continue;
+    const Vector2d d = g.b - g.a;
+    const double len2 = d.squaredNorm();
+    const double f = len2 > 0 ? std::clamp((q - g.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const double dist = (g.a + f * d - q).norm();
+    if (dist < best.distance) best = {&g, f, dist};
+  }
+  return best;
+}
+
+// The colour a curve imposes on the side of it that faces q at its point `at`, if that side is a
+// Dirichlet boundary.
+bool facing_colour(const std::vector<DiffusionCurve>& curves, const NearestPoint& at,
+                   const Vector2d& q, Color& out) {
+  const Segment& g = *at.segment;
+  const DiffusionCurve& c = curves[g.curve];
+  const bool left = cross(g.b - g.a, q - g.a) > 0;
+  if (c.gradient_only || (left ? c.left_boundary : c.right_boundary) != Boundary::Dirichlet)
+    return false;
+  out = color_at(left ? c.left : c.right, g.ta + at.along * (g.tb - g.ta));
+  return true;
+}
+
 }  // namespace
 
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
@@ -202,6 +236,20 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         std::sort(local.begin(), local.end());
         local.erase(std::unique(local.begin(), local.end()), local.end());
 
+        // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
+        // moved towards the colour of the nearest curve as q is nearer to it than the centre is
+        // (the linear profile that the solve's boundary rule assumes along a link).
+        const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, size_t c) {
+          const Color solved(source[c], source[n_pixels + c], source[2 * n_pixels + c]);
+          const NearestPoint at = nearest_point(q, local, segments);
+          Color wall;
+          if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
+          const double from_centre =
+              nearest_point(centre, local, segments, at.segment->curve).distance;
+          if (!(from_centre > at.distance)) return solved;
+          return Color(wall + (solved - wall) * float(at.distance / from_centre));
+        };
+
         Color sum = Color::Zero();
         int count = 0;
         for (int s = 0; s < n * n; ++s) {
@@ -218,31 +266,18 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             reached = true;
             const size_t c = size_t(cy) * width + cx;
             if (region && !(*region)[c]) break;  // outside the shown area: does not count
-            for (int ch = 0; ch < 3; ++ch) sum[ch] += source[ch * n_pixels + c];
+            sum += sample_colour(q, centre, c);
             ++count;
             break;
           }
           if (reached || (region && !(*region)[p])) continue;
           // A sliver with no pixel centre: the side of the nearest curve that faces q.
-          double best = std::numeric_limits<double>::infinity();
-          const Segment* nearest = nullptr;
-          double along = 0;
-          for (int k : local) {
-            const Segment& g = segments[k];
-            const Vector2d d = g.b - g.a;
-            const double len2 = d.squaredNorm();
-            const double f = len2 > 0 ? std::clamp((q - g.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-            const double dist = (g.a + f * d - q).squaredNorm();
-            if (dist < best) best = dist, nearest = &g, along = f;
+          const NearestPoint at = nearest_point(q, local, segments);
+          Color colour;
+          if (at.segment && facing_colour(curves, at, q, colour)) {
+            sum += colour;
+            ++count;
           }
-          if (!nearest) continue;
-          const DiffusionCurve& c = curves[nearest->curve];
-          const bool left = cross(nearest->b - nearest->a, q - nearest->a) > 0;
-          if (c.gradient_only || (left ? c.left_boundary : c.right_boundary) != Boundary::Dirichlet)
-            continue;
-          sum +=
-              color_at(left ? c.left : c.right, nearest->ta + along * (nearest->tb - nearest->ta));
-          ++count;
         }
         ++resampled[y];
         if (count == 0) continue;
