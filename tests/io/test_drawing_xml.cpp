@@ -71,7 +71,7 @@ TEST_CASE("all eight small-usvg scenes read, with their unsupported parts report
   CHECK(neumann == 28);
 }
 
-TEST_CASE("CurveSetXML swaps x/y, R/B and the two sides; globalIDs are normalised", "[xml]") {
+TEST_CASE("CurveSetXML swaps x/y, R/B and the two sides and normalises globalIDs", "[xml]") {
   const io::DrawingFile f = io::parse_drawing_xml(curve_set(kPoints + kColours), "t.xml");
   CHECK(f.dialect == io::XmlDialect::CurveSetXML);
   const auto& c = f.drawing.curves.at(0);

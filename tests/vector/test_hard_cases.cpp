@@ -210,7 +210,7 @@ TEST_CASE("a zero-length strand among others is skipped end to end", "[vector][h
   REQUIRE(arr.visible[0].size() == 1);
 }
 
-TEST_CASE("a wisp entirely off-screen changes nothing; one partly off-screen is clipped",
+TEST_CASE("a wisp entirely off-screen changes nothing and one partly off-screen is clipped",
           "[vector][hard]") {
   const auto a = wisp_of(test::straight(0, {100, 100}, {300, 150}, 2, 2, 6));
   const auto off = wisp_of(test::straight(1, {-600, 100}, {-400, 150}, 1, 1, 6));
