@@ -141,6 +141,22 @@ WispCharts visible_wisp_charts(const sim::ProjectedFrame& frame, const std::vect
   return out;
 }
 
+// Where each wisp shows, for the curves inside wisps; none when the style draws no such curves or
+// no wisp shows. Those curves cannot be placed without the arrangement's faces: an arrangement
+// built without them is the caller's mistake, reported rather than papered over by dropping the
+// curves.
+std::optional<VisibleRegions> visible_regions(const WispArrangement& arrangement,
+                                              const WispCharts& charts, const HairStyle& style) {
+  const bool any_shows =
+      std::any_of(charts.chart.begin(), charts.chart.end(), [](const auto& c) { return bool(c); });
+  if (!needs_visible_regions(style) || !any_shows) return std::nullopt;
+  if (arrangement.view.faces.empty())
+    throw std::logic_error(
+        "shade_hair: the style draws curves inside wisps, which are clipped to the arrangement's "
+        "faces; build the arrangement with ArrangementOptions::keep_faces");
+  return VisibleRegions(arrangement.view, int(charts.chart.size()));
+}
+
 // A visible wisp's outline: its inside colours lit by the shader or Faraj's colour point, the
 // shadow colour outside, active on its visible intervals.
 diffusion::DiffusionCurve outline_curve(const Wisp& wisp, const WispShader& shader,
@@ -194,9 +210,8 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
   if (lit && style.shading.ramp)
     bands.emplace(*style.shading.ramp,
                   style.shading.hard_bands ? style.shading.band_threshold : 1e9);
-  std::optional<VisibleRegions> regions;
-  if (!arrangement.view.faces.empty()) regions.emplace(arrangement.view, int(wisps.size()));
   const WispCharts charts = visible_wisp_charts(frame, wisps, arrangement, style);
+  const std::optional<VisibleRegions> regions = visible_regions(arrangement, charts, style);
   const std::vector<std::vector<ChartPolygon>> highlights = highlight_shapes(
       charts.chart, charts.samples, style, light, std::min(frame.width, frame.height));
 

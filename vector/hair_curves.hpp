@@ -30,7 +30,7 @@ std::vector<diffusion::DiffusionCurve> hair_curves(
     const std::vector<std::vector<std::pair<double, double>>>& visible, const HairStyle& style);
 
 // Whether the style draws curves inside wisps; those need the arrangement's faces
-// (ArrangementOptions::debug_view) to be clipped to where their wisp shows.
+// (ArrangementOptions::keep_faces) to be clipped to where their wisp shows.
 bool needs_visible_regions(const HairStyle& style);
 
 struct HairCurveStats {
@@ -44,8 +44,9 @@ struct HairCurves {
 };
 
 // All the diffusion curves of a frame in the given style. `frame` supplies the light, the eye and
-// the strands' 3D samples (by ProjectedStrand::id == Wisp::strand). Without the arrangement's
-// faces (empty view) no curves are drawn inside wisps.
+// the strands' 3D samples (by ProjectedStrand::id == Wisp::strand). Throws std::logic_error when
+// the style draws curves inside wisps (needs_visible_regions) and a wisp shows but the
+// arrangement was built without its faces.
 HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
                       const WispArrangement& arrangement, const HairStyle& style);
 

@@ -99,7 +99,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
   vector::ArrangementOptions arr;
   arr.view = vector::image_rect(W, H);
   // Curves inside wisps are clipped to the arrangement's faces.
-  arr.debug_view = setup.debug_view || vector::needs_visible_regions(setup.style);
+  arr.keep_faces = setup.keep_faces || vector::needs_visible_regions(setup.style);
   arr.front_regions = setup.flat_regions;
   arr.occluders = std::move(occluders);
   r.arrangement = vector::build_arrangement(r.wisps, arr);
@@ -140,7 +140,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
     pic.hair = {W, H, s.planes};
     r.solution = std::move(s.planes);
   }
-  if (!setup.debug_view) r.arrangement.view = {};
+  if (!setup.keep_faces) r.arrangement.view = {};
   r.time.total = ms_since(t_start);
   return r;
 }
