@@ -80,6 +80,8 @@ class Multigrid {
   int mark_fixed(std::vector<std::uint8_t>& fixed) const;
   void build_finest(const std::vector<std::uint8_t>& fixed);
   void build_coarse(int l);
+  void build_prolongation(int l);  // prolong_[l], once levels_[l + 1] knows its points
+  void galerkin_product(int l);    // the operator of levels_[l + 1]: P^T A_l P
   void build_coarsest();
   void smooth(int l, int sweeps, bool reverse);
   void relax_row(Level& L, int y, int x_parity, float* buf);
@@ -153,8 +155,31 @@ void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
     }
 }
 
-// Operator-dependent prolongation (Dendy 1982) from level l+1 into level l, then the Galerkin
-// coarse operator A_{l+1} = P^T A_l P.
+// The operator of a level around one of its points, with the couplings to all eight neighbours
+// (zero where the level is 5-point).
+struct Stencil {
+  float d, e, w, n, s, ne, nw, se, sw;
+};
+
+float coupling(const std::vector<float>& v, size_t k) {
+  return v.empty() ? 0.0f : v[k];
+}
+
+Stencil stencil_at(const Level& F, size_t k) {
+  const int fs = F.stride;
+  return Stencil{F.diag[k],
+                 F.ae[k],
+                 F.ae[k - 1],
+                 F.as[k - fs],
+                 F.as[k],
+                 coupling(F.asw, k - fs + 1),
+                 coupling(F.ase, k - fs - 1),
+                 coupling(F.ase, k),
+                 coupling(F.asw, k)};
+}
+
+// Level l+1: the even points of level l, with an operator-dependent prolongation into level l
+// and the Galerkin coarse operator A_{l+1} = P^T A_l P.
 template <int NC>
 void Multigrid<NC>::build_coarse(int l) {
   const Level& F = levels_[l];
@@ -167,24 +192,17 @@ void Multigrid<NC>::build_coarse(int l) {
   C.alive.assign(nc, 0);
   for (int J = 0; J < C.h; ++J)
     for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
+  build_prolongation(l);
+  galerkin_product(l);
+}
 
-  // Couplings of a fine point (zero where the fine level is 5-point).
-  const int fs = F.stride;
-  const auto a = [&](const std::vector<float>& v, size_t k) { return v.empty() ? 0.0f : v[k]; };
-  struct Stencil {
-    float d, e, w, n, s, ne, nw, se, sw;
-  };
-  const auto stencil = [&](size_t k) {
-    return Stencil{F.diag[k],
-                   F.ae[k],
-                   F.ae[k - 1],
-                   F.as[k - fs],
-                   F.as[k],
-                   a(F.asw, k - fs + 1),
-                   a(F.ase, k - fs - 1),
-                   a(F.ase, k),
-                   a(F.asw, k)};
-  };
+// Operator-dependent prolongation (Dendy 1982) from level l+1 into level l: each fine point
+// interpolates from the coarse points around it with weights from its own stencil.
+template <int NC>
+void Multigrid<NC>::build_prolongation(int l) {
+  const Level& F = levels_[l];
+  const Level& C = levels_[l + 1];
+  const size_t nc = C.padded();
   const auto ratio = [](float num, float den) { return den > 1e-6f ? num / den : 0.0f; };
 
   // Collapsing the stencil of an edge point onto its two coarse neighbours (Dendy): the
@@ -213,7 +231,7 @@ void Multigrid<NC>::build_coarse(int l) {
       if (2 * I + 1 < F.w) {
         const size_t k = F.at(2 * I + 1, 2 * J);
         if (F.alive[k]) {
-          const Stencil s = stencil(k);
+          const Stencil s = stencil_at(F, k);
           const Collapse west = collapse(s.w, s.nw + s.sw, alive_c(I, J), s.d);
           const Collapse east = collapse(s.e, s.ne + s.se, alive_c(I + 1, J), s.d);
           const float den = s.d - s.n - s.s - west.self - east.self;
@@ -224,7 +242,7 @@ void Multigrid<NC>::build_coarse(int l) {
       if (2 * J + 1 < F.h) {
         const size_t k = F.at(2 * I, 2 * J + 1);
         if (F.alive[k]) {
-          const Stencil s = stencil(k);
+          const Stencil s = stencil_at(F, k);
           const Collapse north = collapse(s.n, s.nw + s.ne, alive_c(I, J), s.d);
           const Collapse south = collapse(s.s, s.sw + s.se, alive_c(I, J + 1), s.d);
           const float den = s.d - s.w - s.e - north.self - south.self;
@@ -240,18 +258,26 @@ void Multigrid<NC>::build_coarse(int l) {
       const size_t k = F.at(2 * I + 1, 2 * J + 1);
       if (!F.alive[k]) continue;
       const size_t kc = C.at(I, J);
-      const Stencil s = stencil(k);
+      const Stencil s = stencil_at(F, k);
       const float inv = s.d > 1e-6f ? 1.0f / s.d : 0.0f;
       P.c00[kc] = (s.w * P.y0[kc] + s.n * P.x0[kc] + s.nw * alive_c(I, J)) * inv;
       P.c10[kc] = (s.e * P.y0[kc + 1] + s.n * P.x1[kc] + s.ne * alive_c(I + 1, J)) * inv;
       P.c01[kc] = (s.w * P.y1[kc] + s.s * P.x0[kc + cs] + s.sw * alive_c(I, J + 1)) * inv;
       P.c11[kc] = (s.e * P.y1[kc + 1] + s.s * P.x1[kc + cs] + s.se * alive_c(I + 1, J + 1)) * inv;
     }
+}
 
-  // Galerkin product A_c = P^T (A P), one chunk of coarse rows at a time.
-  // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
-  // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
-  // coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1).
+// The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
+// Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
+// cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
+// coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1).
+template <int NC>
+void Multigrid<NC>::galerkin_product(int l) {
+  const Level& F = levels_[l];
+  Level& C = levels_[l + 1];
+  const size_t nc = C.padded();
+  const int cs = C.stride;
+  const Prolongation& P = prolong_[l];
   C.diag.assign(nc, 0.0f);
   C.inv_diag.assign(nc, 0.0f);
   for (auto* v : {&C.ae, &C.as, &C.ase, &C.asw}) v->assign(nc, 0.0f);
@@ -293,7 +319,7 @@ void Multigrid<NC>::build_coarse(int l) {
         if (!F.alive[k]) continue;
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
         const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
-        const Stencil st = stencil(k);
+        const Stencil st = stencil_at(F, k);
         const float coeff[9] = {-st.nw, -st.n, -st.ne, -st.w, st.d, -st.e, -st.sw, -st.s, -st.se};
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {

@@ -64,7 +64,7 @@ struct Resolver {
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
   std::vector<Cover> cover;      // per face
-  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones in debug view)
+  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
   std::vector<char> hair;        // per face: covered and in view
   std::vector<char> in_view;
   std::vector<int> front;
@@ -164,7 +164,7 @@ struct Resolver {
     front_depth.assign(faces, 0);
     for (int f = 0; f < faces; ++f) {
       if (f == map.unbounded_face) continue;
-      if (cover[f].empty() && !options.debug_view) continue;
+      if (cover[f].empty() && !options.keep_faces) continue;
       sample[f] = interior_point(f);
       in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
       if (cover[f].empty() || cover[f].front().first >= n_wisps()) continue;  // no wisp
@@ -416,7 +416,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   }
   out.silhouette = chain_edges(map, silhouette);
   out.occlusion = chain_edges(map, occlusion);
-  if (options.debug_view) out.view = r.view();
+  if (options.keep_faces) out.view = r.view();
   out.stats.resolve_ms = ms_since(t1);
 
   out.stats.segments = int(segments.size());

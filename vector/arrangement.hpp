@@ -37,7 +37,10 @@ struct ArrangementOptions {
   // counts as hair or as visible, and wisps wholly outside are left out before the sweep.
   Eigen::AlignedBox2d view{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   bool clip_to_view = true;
-  bool debug_view = false;     // fill WispArrangement::view
+  // Fill WispArrangement::view: every face, edge and vertex as plain geometry, with the faces'
+  // cover and front-most wisp. Curves inside wisps are clipped to these faces (shade_hair throws
+  // without them), and the inspector draws them.
+  bool keep_faces = false;
   bool front_regions = false;  // fill WispArrangement::front_regions
   std::vector<Occluder> occluders;
 };
@@ -79,7 +82,7 @@ struct WispArrangement {
   std::vector<InkLine> silhouette;  // boundary between hair and no hair (not the view frame)
   std::vector<InkLine> occlusion;   // where the front-most wisp changes inside the hair
   ArrangementStats stats;
-  ArrangementView view;  // only with ArrangementOptions::debug_view
+  ArrangementView view;  // only with ArrangementOptions::keep_faces
   // Per input wisp: where it is the front-most wisp (hair faces only), as polygons with holes;
   // together they tile the hair mask. Only with ArrangementOptions::front_regions.
   std::vector<HairMask> front_regions;

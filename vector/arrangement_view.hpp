@@ -1,8 +1,9 @@
-// Debug view data of a wisp arrangement: everything the inspector app draws, as plain geometry in
-// pixels (no CGAL). Faces are polygons with holes and know which wisps cover them and which one
-// is in front; edges know the outline pieces they come from and whether each is visible;
-// vertices mark the intersections. Filled by build_arrangement when ArrangementOptions::debug_view
-// is set. Indices (face_left, face_right, ...) refer to the vectors of the same view.
+// The faces, edges and vertices of a wisp arrangement as plain geometry in pixels (no CGAL): what
+// curves inside wisps are clipped to (vector/visible_region.hpp) and what the inspector draws.
+// Faces are polygons with holes and know which wisps cover them and which one is in front; edges
+// know the outline pieces they come from and whether each is visible; vertices mark the
+// intersections. Filled by build_arrangement when ArrangementOptions::keep_faces is set. Indices
+// (face_left, face_right, ...) refer to the vectors of the same view.
 #pragma once
 
 #include <Eigen/Core>

@@ -5,16 +5,9 @@
 //
 // hair_curves: Faraj's colouring (the hair colour inside with one colour point, shadow outside).
 // shade_hair: every style. With lit shading the inside colours come from the light on the wisp
-// as a tube (vector/wisp_shader.hpp) at the outline (u = +-1), and curves inside the wisp carry
-// what diffusion from the outline alone cannot:
-//  - the centre line (u = 0) with the colour there: the lit side of a tube peaks inside it;
-//  - at each hard edge of the toon ramp, the level set of the ramp's x in the wisp's chart, with
-//    the two bands' colours on its two sides (diffusion alone would blend them smoothly);
-//  - highlights (vector/highlights.hpp): closed, the highlight colour inside, an insulating
-//    (Neumann) side outside so the shading around them is undisturbed.
-// These are built in the wisp's chart, so they lie inside the wisp, and are active only where
-// the wisp is visible (vector/visible_region.hpp: the arrangement's faces whose front-most wisp
-// it is) and, for the centre line and band edges, outside the wisp's highlights.
+// as a tube (vector/wisp_shader.hpp) at the outline (u = +-1); after the outlines come the curves
+// inside the wisps that carry what diffusion from the outline alone cannot: centre lines, toon
+// band edges and highlights (vector/inner_curves.hpp), active only where their wisp is visible.
 #pragma once
 
 #include <vector>
@@ -37,7 +30,7 @@ std::vector<diffusion::DiffusionCurve> hair_curves(
     const std::vector<std::vector<std::pair<double, double>>>& visible, const HairStyle& style);
 
 // Whether the style draws curves inside wisps; those need the arrangement's faces
-// (ArrangementOptions::debug_view) to be clipped to where their wisp shows.
+// (ArrangementOptions::keep_faces) to be clipped to where their wisp shows.
 bool needs_visible_regions(const HairStyle& style);
 
 struct HairCurveStats {
@@ -51,8 +44,9 @@ struct HairCurves {
 };
 
 // All the diffusion curves of a frame in the given style. `frame` supplies the light, the eye and
-// the strands' 3D samples (by ProjectedStrand::id == Wisp::strand). Without the arrangement's
-// faces (empty view) no curves are drawn inside wisps.
+// the strands' 3D samples (by ProjectedStrand::id == Wisp::strand). Throws std::logic_error when
+// the style draws curves inside wisps (needs_visible_regions) and a wisp shows but the
+// arrangement was built without its faces.
 HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
                       const WispArrangement& arrangement, const HairStyle& style);
 

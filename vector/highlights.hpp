@@ -1,5 +1,5 @@
 // Stylised highlights as closed shapes in a wisp's chart (t, u), turned into closed diffusion
-// curves by vector/hair_curves.cpp.
+// curves by vector/inner_curves.cpp.
 //  - Band (Costigan 2013, section 4.3.6): the region of the tube where the Blinn term
 //    (N(u).H)^c exceeds a threshold. Along the strand it peaks where the tangent is perpendicular
 //    to H (the Kajiya-Kay peak), so neighbouring wisps light up at consistent places and the

@@ -18,7 +18,7 @@ namespace wisp::vector {
 
 class VisibleRegions {
  public:
-  // `view`: the arrangement's debug view (ArrangementOptions::debug_view).
+  // `view`: the arrangement's faces (ArrangementOptions::keep_faces).
   VisibleRegions(const ArrangementView& view, int wisp_count);
 
   bool contains(int wisp, const Eigen::Vector2d& p) const;

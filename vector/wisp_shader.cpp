@@ -92,4 +92,43 @@ Eigen::Vector3f WispShader::color(double t, double u) const {
   return color_in_band(t, u, band(t, u));
 }
 
+std::vector<diffusion::ColorStop> stops_along(const WispShader& sh,
+                                              const std::vector<Eigen::Vector2d>& tu,
+                                              const std::vector<double>& s) {
+  std::vector<diffusion::ColorStop> out;
+  const RampBands* bands = sh.bands();
+  int prev_band = 0;
+  for (size_t i = 0; i < tu.size(); ++i) {
+    const int b = sh.band(tu[i].x(), tu[i].y());
+    if (i > 0 && bands && b != prev_band) {
+      // Each edge between the two bands, in the order the segment crosses them.
+      const int step = b > prev_band ? 1 : -1;
+      double lo_f = 0;
+      for (int from = prev_band; from != b; from += step) {
+        const double edge = bands->edges()[step > 0 ? from : from - 1];
+        double lo = lo_f, hi = 1;
+        const auto x_at = [&](double f) {
+          const Eigen::Vector2d p = tu[i - 1] + f * (tu[i] - tu[i - 1]);
+          return sh.x(p.x(), p.y());
+        };
+        const bool rising = step > 0;
+        for (int k = 0; k < 16; ++k) {
+          const double m = 0.5 * (lo + hi);
+          ((x_at(m) < edge) == rising ? lo : hi) = m;
+        }
+        const double f = 0.5 * (lo + hi);
+        lo_f = f;
+        const Eigen::Vector2d p = tu[i - 1] + f * (tu[i] - tu[i - 1]);
+        const double sc = s[i - 1] + f * (s[i] - s[i - 1]);
+        out.push_back({sc, sh.color_in_band(p.x(), p.y(), from)});
+        out.push_back({sc, sh.color_in_band(p.x(), p.y(), from + step)});
+      }
+    }
+    out.push_back({s[i], sh.color_in_band(tu[i].x(), tu[i].y(), b)});
+    prev_band = b;
+  }
+  for (size_t i = 1; i < out.size(); ++i) out[i].t = std::max(out[i].t, out[i - 1].t);
+  return out;
+}
+
 }  // namespace wisp::vector

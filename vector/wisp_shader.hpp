@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "diffusion/diffusion_curve.hpp"
 #include "vector/hair_style.hpp"
 #include "vector/toon_ramp.hpp"
 #include "vector/wisp_chart.hpp"
@@ -44,5 +45,12 @@ class WispShader {
   FrameLight light_;
   const RampBands* bands_;
 };
+
+// Colour stops along a curve through chart points `tu` at curve parameters `s`: the shader's
+// colour at each point, and where the ramp's band changes between two points, a pair of stops at
+// the band edge with the colours of both bands (a sharp step). Parameters never decrease.
+std::vector<diffusion::ColorStop> stops_along(const WispShader& shader,
+                                              const std::vector<Eigen::Vector2d>& tu,
+                                              const std::vector<double>& s);
 
 }  // namespace wisp::vector

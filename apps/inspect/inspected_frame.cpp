@@ -43,7 +43,7 @@ InspectFrame FrameSource::render(int k) {
   out.index = k;
   out.time = frames_.anim.frames[k].time;
   render::FrameSetup setup = setup_;
-  setup.debug_view = true;
+  setup.keep_faces = true;
   const size_t n = size_t(frames_.projected[k].width) * size_t(frames_.projected[k].height);
   setup.solver.observer = [&out, n](int, const std::vector<float>& r) {
     std::vector<float> magnitude(n, 0.0f);

@@ -1,5 +1,5 @@
 // One frame as the inspector sees it: everything `wisp render` computes for the frame (wisps,
-// arrangement with its debug view, diffusion curves, rasterized constraints, solution, finished
+// arrangement with its faces, diffusion curves, rasterized constraints, solution, finished
 // picture) plus what only an inspector wants: the solver residual at every pixel after each
 // cycle, and the finished image and hair mask rasterized once. FrameSource renders frames on
 // demand exactly as the renderer does, including its warm starts: inside a block of

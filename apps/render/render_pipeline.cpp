@@ -112,7 +112,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
   vector::ArrangementOptions arr;
   arr.view = vector::image_rect(W, H);
   // Curves inside wisps are clipped to the arrangement's faces.
-  arr.debug_view = setup.debug_view || vector::needs_visible_regions(setup.style);
+  arr.keep_faces = setup.keep_faces || vector::needs_visible_regions(setup.style);
   arr.front_regions = setup.flat_regions;
   arr.occluders = std::move(occluders);
   r.arrangement = vector::build_arrangement(r.wisps, arr);
@@ -158,7 +158,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
       r.time.antialias = ms_since(t0);
     }
   }
-  if (!setup.debug_view) r.arrangement.view = {};
+  if (!setup.keep_faces) r.arrangement.view = {};
   r.time.total = ms_since(t_start);
   return r;
 }

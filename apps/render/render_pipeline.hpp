@@ -24,7 +24,7 @@ struct FrameSetup {
   vector::HairStyle style;
   diffusion::SolverOptions solver;
   Rgb background{1, 1, 1};
-  bool debug_view = false;    // keep the arrangement's debug view (inspector)
+  bool keep_faces = false;    // keep the arrangement's faces in FrameResult (the inspector)
   bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
   bool antialias = true;      // mix both sides' colours where visible curves cross pixels
 };

@@ -16,8 +16,12 @@ namespace wisp::render {
 
 SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
                               const SceneFramesOptions& options) {
+  return load_scene_frames(io::load_scene(scene_path), options);
+}
+
+SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& options) {
   SceneFrames out;
-  out.scene = io::load_scene(scene_path);
+  out.scene = std::move(scene_in);
   io::Scene& scene = out.scene;
   if (options.width > 0 && options.height > 0) {
     scene.camera.width = options.width;

@@ -41,6 +41,8 @@ struct SceneFrames {
 // Loads, simulates or reads, and projects. Errors are exceptions naming the file and field.
 SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
                               const SceneFramesOptions& options);
+// The same for a scene already loaded (io::load_scene).
+SceneFrames load_scene_frames(io::Scene scene, const SceneFramesOptions& options);
 
 // The renderer's settings for a scene (style, solver tolerance, background).
 FrameSetup frame_setup(const io::Scene& scene);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
@@ -82,7 +83,7 @@ Rendered render(const wisp::sim::ProjectedFrame& frame, const v::HairStyle& styl
   r.wisps = v::build_wisps(frame, style.geometry);
   v::ArrangementOptions o;
   o.view = v::image_rect(256, 256);
-  o.debug_view = true;
+  o.keep_faces = true;
   r.arrangement = v::build_arrangement(r.wisps, o);
   r.curves = v::shade_hair(frame, r.wisps, r.arrangement, style);
   for (const auto& c : r.curves.curves) wisp::diffusion::validate(c, "curve");
@@ -247,6 +248,29 @@ TEST_CASE("hard band edges lie inside their wisp, carry both bands and only show
     }
   CHECK(dark_px > 50);
   CHECK(light_px > 50);
+}
+
+TEST_CASE("curves inside wisps without the arrangement's faces are an error, not dropped",
+          "[vector][shading]") {
+  const Camera cam;
+  std::vector<Vector3d> a;
+  for (int i = 0; i <= 10; ++i) a.emplace_back(-0.12 + 0.024 * i, 0.2 - 0.04 * i, -1.0);
+  const auto frame = frame_of({strand_of(0, a, cam)}, Vector3d(0.3, 0.2, 1), cam);
+  v::HairStyle inner = lit_style();
+  inner.shading.centre_line = true;
+  v::HairStyle outlines_only = lit_style();
+  outlines_only.shading.centre_line = false;
+  REQUIRE(v::needs_visible_regions(inner));
+  REQUIRE(!v::needs_visible_regions(outlines_only));
+  const std::vector<v::Wisp> wisps = v::build_wisps(frame, inner.geometry);
+  v::ArrangementOptions o;
+  o.view = v::image_rect(256, 256);
+  const v::WispArrangement without = v::build_arrangement(wisps, o);
+  CHECK_THROWS_AS(v::shade_hair(frame, wisps, without, inner), std::logic_error);
+  CHECK(v::shade_hair(frame, wisps, without, outlines_only).curves.size() == 1);
+  o.keep_faces = true;
+  const v::WispArrangement with = v::build_arrangement(wisps, o);
+  CHECK(v::shade_hair(frame, wisps, with, inner).stats.centre_lines == 1);
 }
 
 TEST_CASE("the highlight band sits at the analytic Kajiya-Kay peak, and only with specular on",

@@ -31,7 +31,7 @@ vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps, bool cli
   vector::ArrangementOptions o;
   o.view = vector::image_rect(512, 512);
   o.clip_to_view = clip;
-  o.debug_view = true;
+  o.keep_faces = true;
   return vector::build_arrangement(wisps, o);
 }
 

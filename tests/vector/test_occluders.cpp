@@ -50,7 +50,7 @@ vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps,
   vector::ArrangementOptions o;
   o.view = vector::image_rect(512, 512);
   o.occluders = std::move(occluders);
-  o.debug_view = true;
+  o.keep_faces = true;
   return vector::build_arrangement(wisps, o);
 }
 

@@ -62,7 +62,7 @@ Agreement compare(int count, std::uint32_t seed) {
   const auto wisps = vector::build_wisps(frame, style);
   vector::ArrangementOptions options;
   options.view = vector::image_rect(size, size);
-  options.debug_view = true;
+  options.keep_faces = true;
   const auto arr = vector::build_arrangement(wisps, options);
 
   const test::Raster ref = test::reference_front(wisps, size, size);
@@ -110,7 +110,7 @@ TEST_CASE("the arrangement is deterministic", "[vector][raster]") {
   const auto wisps = vector::build_wisps(test::random_frame(80, 5), style);
   vector::ArrangementOptions options;
   options.view = vector::image_rect(512, 512);
-  options.debug_view = true;
+  options.keep_faces = true;
   const auto a = vector::build_arrangement(wisps, options);
   const auto b = vector::build_arrangement(wisps, options);
   CHECK(a.visible == b.visible);

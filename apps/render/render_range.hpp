@@ -1,0 +1,72 @@
+// A range of an animation's frames rendered into a folder: frame_NNNN.png and frame_NNNN.svg per
+// frame (and mask_NNNN.png on request), then the range's preview video and contact sheet. The job
+// of `wisp render` below its command line.
+//
+// Determinism and resuming. Each frame's solve is warm-started from the previous frame's answer,
+// but only inside fixed blocks of frames (render.warm_start_block, counted from frame 0): blocks
+// are independent, so they render in parallel and the pixels do not depend on the thread count.
+// A frame is written to a temporary name and renamed; frames whose PNG and SVG both exist are
+// skipped (unless forced), and when a block is resumed in its middle, its earlier frames are
+// solved again in memory so that the warm starts, and therefore the pixels, are the same as in
+// an uninterrupted run. The same holds for ranges that split an animation across machines.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/render/picture.hpp"
+#include "apps/render/render_pipeline.hpp"
+#include "apps/render/scene_frames.hpp"
+
+namespace wisp::render {
+
+// Frames first to last - 1 of an animation.
+struct FrameRange {
+  int first = 0, last = 0;
+  int size() const { return last - first; }
+};
+
+// The file of frame k: "frame_0007.png" for k = 7 and ext "png".
+std::string frame_file_name(int k, const char* ext);
+
+// Creates `folder` if missing and removes the temporaries that a killed render left for frames
+// first to last - 1 (last < 0: to the end): those frames get rendered again. Temporaries of other
+// ranges are left alone: another process may be rendering them into the same folder right now.
+// Throws std::runtime_error naming the folder when it cannot be created.
+void prepare_frame_folder(const std::filesystem::path& folder, int first, int last);
+
+// Which frames to write and which warm-start blocks to solve for them.
+struct RangePlan {
+  int block = 1;            // frames per warm-start block
+  std::vector<char> write;  // per frame of the animation: 1 to write it
+  std::vector<int> blocks;  // the blocks holding a frame to write, in order
+  int write_count() const;
+};
+
+// The frames of `range` to write: all of them when `force`, else those whose PNG or SVG is
+// missing from `folder`. `block`: render.warm_start_block (at least 1 is used).
+RangePlan plan_range(const std::filesystem::path& folder, FrameRange range, int frame_count,
+                     int block, bool force);
+
+struct FrameFiles {
+  std::filesystem::path folder;
+  SvgStyle svg_style = SvgStyle::Embedded;
+  bool masks = false;  // also write mask_NNNN.png
+};
+
+// Renders the planned frames into files.folder, blocks in parallel (TBB). `written(count)` is
+// called after each frame written, one call at a time (for a progress bar). Returns the stats of
+// the frames written (render_stats.hpp), in frame order.
+std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
+                                         const RangePlan& plan, const FrameFiles& files,
+                                         const std::function<void(int count)>& written);
+
+// The preview video (when the scene asks for one) and the contact sheet of every frame of
+// `range` in `folder`, those rendered by earlier runs included.
+void write_previews(const SceneFrames& frames, FrameRange range,
+                    const std::filesystem::path& folder);
+
+}  // namespace wisp::render

@@ -1,0 +1,83 @@
+// stats.json of `wisp render` (see render_stats.hpp).
+#include "apps/render/render_stats.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace wisp::render {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& r, double write_ms,
+                           double frame_ms) {
+  return {{"frame", k},
+          {"time", frames.anim.frames[k].time},
+          {"strands", frames.projected[k].strands.size()},
+          {"wisps", r.wisps.size()},
+          {"visible_curves", r.curves.size()},
+          {"curve_kinds",
+           {{"outlines", r.curve_stats.outlines},
+            {"centre_lines", r.curve_stats.centre_lines},
+            {"band_edges", r.curve_stats.band_edges},
+            {"highlights", r.curve_stats.highlights}}},
+          {"ink_strokes", r.picture.ink.size()},
+          {"faces", r.arrangement.stats.faces},
+          {"edges", r.arrangement.stats.edges},
+          {"intersections", r.arrangement.stats.intersections},
+          {"solver_cycles", r.solve.cycles},
+          {"solver_residual", r.solve.final_residual},
+          {"solver_converged", r.solve.converged || r.curves.empty()},
+          {"antialiased_pixels", r.antialias.pixels},
+          {"ms",
+           {{"wisps", r.time.wisps},
+            {"arrangement", r.time.arrangement},
+            {"arrangement_sweep", r.arrangement.stats.sweep_ms},
+            {"arrangement_resolve", r.arrangement.stats.resolve_ms},
+            {"curves", r.time.curves},
+            {"ink", r.time.ink},
+            {"rasterize", r.time.rasterize},
+            {"solve", r.time.solve},
+            {"antialias", r.time.antialias},
+            {"write", write_ms},
+            {"frame", frame_ms}}}};
+}
+
+nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
+                         const std::vector<nlohmann::json>& written, const RunTimes& ms) {
+  std::map<std::string, std::vector<double>> stage;
+  for (const nlohmann::json& f : written)
+    for (const auto& [name, t] : f["ms"].items()) stage[name].push_back(t.get<double>());
+  nlohmann::json medians, totals;
+  for (const auto& [name, v] : stage) {
+    medians[name] = median(v);
+    double sum = 0;
+    for (double x : v) sum += x;
+    totals[name] = sum;
+  }
+  const int count = int(written.size());
+  return {{"scene", scene_file},
+          {"frames_in_animation", frames.frame_count()},
+          {"range", {range.first, range.last}},
+          {"rendered", written.size()},
+          {"skipped", range.size() - count},
+          {"width", frames.scene.camera.width},
+          {"height", frames.scene.camera.height},
+          {"ms",
+           {{"simulate_and_project", ms.simulate_and_project},
+            {"frames", ms.frames},
+            {"video_and_contact_sheet", ms.video_and_contact_sheet},
+            {"total", ms.total}}},
+          {"frames_per_second", ms.frames > 0 ? written.size() * 1000.0 / ms.frames : 0.0},
+          {"stage_ms_median", medians},
+          {"stage_ms_total", totals},
+          {"frames", written}};
+}
+
+}  // namespace wisp::render

@@ -1,0 +1,34 @@
+// stats.json of `wisp render` (docs/render.md): per frame written, what it holds (strands, wisps,
+// curves by kind, ink strokes, arrangement size, solver cycles and residual) and milliseconds per
+// stage; for the run, the range, the frames written and skipped, the medians and totals of every
+// stage over the frames, frames per second and the time of each phase.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/render/render_pipeline.hpp"
+#include "apps/render/render_range.hpp"
+#include "apps/render/scene_frames.hpp"
+
+namespace wisp::render {
+
+// Frame k's record: `r` is its rendering, written in write_ms; frame_ms from the start of its
+// rendering to the end of its writing.
+nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& r, double write_ms,
+                           double frame_ms);
+
+// Milliseconds of the phases of a run.
+struct RunTimes {
+  double simulate_and_project = 0;
+  double frames = 0;                   // rendering and writing the frames
+  double video_and_contact_sheet = 0;  // the previews
+  double total = 0;
+};
+
+// The whole of stats.json. `written`: the frame records (frame_stats) in frame order.
+nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
+                         const std::vector<nlohmann::json>& written, const RunTimes& ms);
+
+}  // namespace wisp::render
