@@ -99,14 +99,25 @@ class Fields {
       out = c.cast<float>();
     }
   }
-  // One of `choices`.
-  void choice(const char* key, std::string& out, const std::vector<std::string>& choices) {
-    get(key, out);
-    for (const auto& c : choices)
-      if (c == out) return;
+  // One of the names in `table` (sim/choices.hpp).
+  template <class Table, class T>
+  void choice(const char* key, T& out, const Table& table) {
+    if (!find(key)) return;
+    std::string given;
+    get(key, given);
+    if (const auto value = sim::parse_choice(table, given)) {
+      out = *value;
+      return;
+    }
+    const std::vector<std::string> names = sim::choice_names(table);
     std::string list;
-    for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-    fail(name(key), "expected one of " + list + ", got \"" + out + "\"" + suggest(out, choices));
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    fail(name(key), "expected one of " + list + ", got \"" + given + "\"" + suggest(given, names));
+  }
+  // One of the names of the enum E (its choices(E) table).
+  template <class E>
+  void choice(const char* key, E& out) {
+    choice(key, out, choices(E{}));
   }
 
   double number(const json& v, const std::string& field) const {
@@ -162,13 +173,14 @@ std::filesystem::path resolve(const std::filesystem::path& scene, const std::str
 
 void parse_head(Fields& f, Scene& s) {
   sim::HeadParams& h = s.head;
-  f.choice("shape", h.shape, {"ellipsoid", "mesh"});
+  f.choice("shape", h.shape);
   f.get("radii", h.radii);
   require(f, h.radii.minCoeff() > 0, "radii", "every radius must be positive");
   std::string mesh;
   f.get("mesh", mesh);
   if (!mesh.empty()) h.mesh = resolve(s.path, mesh);
-  require(f, h.shape != "mesh" || !mesh.empty(), "mesh", "shape \"mesh\" needs an OBJ file name");
+  require(f, h.shape != sim::HeadKind::Mesh || !mesh.empty(), "mesh",
+          "shape \"mesh\" needs an OBJ file name");
   f.get("mesh_scale", h.mesh_scale);
   require(f, h.mesh_scale > 0, "mesh_scale", "must be positive");
   f.get("mesh_offset", h.mesh_offset);
@@ -182,20 +194,20 @@ void parse_head(Fields& f, Scene& s) {
 
 void parse_hair(Fields& f, Scene& s) {
   sim::HairParams& h = s.hair;
-  f.choice("source", h.source, {"procedural", "json", "hair"});
+  f.choice("source", h.source);
   std::string file;
   f.get("file", file);
   if (!file.empty()) h.file = resolve(s.path, file);
-  require(f, h.source == "procedural" || !file.empty(), "file",
-          "source \"" + h.source + "\" needs a strand file name");
+  const bool procedural = h.source == sim::HairSource::Procedural;
+  require(f, procedural || !file.empty(), "file",
+          "source \"" + std::string(sim::choice_name(h.source)) + "\" needs a strand file name");
   f.get("count", h.count);
-  require(f, h.source == "procedural" ? h.count >= 1 : h.count >= 0, "count",
-          "must be " +
-              std::string(h.source == "procedural" ? "at least 1" : ">= 0 (0 = all strands)") +
+  require(f, procedural ? h.count >= 1 : h.count >= 0, "count",
+          "must be " + std::string(procedural ? "at least 1" : ">= 0 (0 = all strands)") +
               ", got " + std::to_string(h.count));
   require(f, h.count <= 100000, "count", "at most 100000 guides");
   f.get("segments", h.segments);
-  require(f, h.source == "procedural" ? h.segments >= 1 : h.segments >= 0, "segments",
+  require(f, procedural ? h.segments >= 1 : h.segments >= 0, "segments",
           "must be at least 1 (0 keeps a file's points), got " + std::to_string(h.segments));
   require(f, h.segments <= 1000, "segments", "at most 1000");
   f.get("length", h.length);
@@ -203,7 +215,7 @@ void parse_hair(Fields& f, Scene& s) {
   f.get("length_variation", h.length_variation);
   require(f, h.length_variation >= 0 && h.length_variation < 1, "length_variation",
           "must be in [0, 1)");
-  f.choice("style", h.style, {"straight", "wavy", "curly"});
+  f.choice("style", h.style);
   f.get("amplitude", h.amplitude);
   require(f, h.amplitude >= 0, "amplitude", "must be >= 0");
   f.get("frequency", h.frequency);
@@ -226,7 +238,7 @@ void parse_hair(Fields& f, Scene& s) {
 
 void parse_motion(Fields& f, Scene& s) {
   sim::MotionParams& m = s.motion;
-  f.choice("preset", m.preset, {"none", "turn", "nod", "shake", "walk", "keys"});
+  f.choice("preset", m.preset);
   f.get("duration", m.duration);
   require(f, m.duration > 0 && m.duration <= 3600, "duration", "must be in (0, 3600] seconds");
   f.get("amplitude", m.amplitude);
@@ -248,13 +260,13 @@ void parse_motion(Fields& f, Scene& s) {
       m.keys.push_back(key);
     }
   }
-  require(f, m.preset != "keys" || !m.keys.empty(), "keys",
+  require(f, m.preset != sim::MotionPreset::Keys || !m.keys.empty(), "keys",
           "preset \"keys\" needs at least one keyframe");
 }
 
 void parse_sim(Fields& f, Scene& s) {
   sim::SimParams& p = s.sim;
-  f.choice("model", p.model, {"dftl", "featherstone", "rope"});
+  f.choice("model", p.model);
   f.get("fps", p.fps);
   require(f, p.fps > 0 && p.fps <= 1000, "fps", "must be in (0, 1000]");
   f.get("step_rate", p.step_rate);
@@ -319,9 +331,7 @@ std::filesystem::path folder_of(const Fields& f) {
 
 void parse_shading(Fields& f, vector::HairStyle& st) {
   vector::ShadingStyle& s = st.shading;
-  std::string model = s.model == vector::ShadingModel::Lit ? "lit" : "faraj";
-  f.choice("model", model, {"faraj", "lit"});
-  s.model = model == "lit" ? vector::ShadingModel::Lit : vector::ShadingModel::Faraj;
+  f.choice("model", s.model);
   if (const json* r = f.find("ramp")) {
     if (r->is_null()) {
       s.ramp.reset();
@@ -339,17 +349,7 @@ void parse_shading(Fields& f, vector::HairStyle& st) {
       }
     }
   }
-  static const std::vector<std::pair<std::string, vector::RampMetric>> metrics = {
-      {"none", vector::RampMetric::None},
-      {"depth", vector::RampMetric::Depth},
-      {"back_light", vector::RampMetric::BackLight},
-      {"specular", vector::RampMetric::Specular}};
-  std::string metric;
-  for (const auto& [name, m] : metrics)
-    if (m == s.metric) metric = name;
-  f.choice("ramp_metric", metric, {"none", "depth", "back_light", "specular"});
-  for (const auto& [name, m] : metrics)
-    if (name == metric) s.metric = m;
+  f.choice("ramp_metric", s.metric);
   f.color("ramp_tint", s.ramp_tint);
   f.get("hard_bands", s.hard_bands);
   f.get("band_threshold", s.band_threshold);
@@ -389,16 +389,7 @@ void parse_shading(Fields& f, vector::HairStyle& st) {
 
 void parse_highlights(Fields& f, vector::HairStyle& st) {
   vector::HighlightStyle& h = st.specular;
-  static const std::vector<std::pair<std::string, vector::HighlightShape>> shapes = {
-      {"none", vector::HighlightShape::None},
-      {"band", vector::HighlightShape::Band},
-      {"anime", vector::HighlightShape::Anime}};
-  std::string shape;
-  for (const auto& [name, v] : shapes)
-    if (v == h.shape) shape = name;
-  f.choice("shape", shape, {"none", "band", "anime"});
-  for (const auto& [name, v] : shapes)
-    if (name == shape) h.shape = v;
+  f.choice("shape", h.shape);
   f.color("color", h.color);
   f.get("threshold", h.threshold);
   require(f, h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
@@ -473,10 +464,11 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"profile",
        [](Fields& f, const char* k, HairStyle& s) {
          if (!f.find(k)) return;
-         std::string name = "taper";
-         f.choice(k, name, {"taper", "sine"});
-         s.geometry.profile =
-             name == "sine" ? vector::WidthProfile::shin() : vector::WidthProfile::faraj_taper();
+         auto shape = vector::WidthProfile::Shape::Linear;
+         f.choice(k, shape);
+         s.geometry.profile = shape == vector::WidthProfile::Shape::Shin
+                                  ? vector::WidthProfile::shin()
+                                  : vector::WidthProfile::faraj_taper();
        }},
       {"curvature_clamp",
        [](Fields& f, const char* k, HairStyle& s) {
@@ -504,9 +496,9 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
        }},
       {"highlight_side",
        [](Fields& f, const char* k, HairStyle& s) {
-         std::string side = s.highlight_on_left ? "left" : "right";
-         f.choice(k, side, {"left", "right"});
-         s.highlight_on_left = side == "left";
+         static constexpr std::array<sim::Choice<bool>, 2> on_left{
+             {{"left", true}, {"right", false}}};
+         f.choice(k, s.highlight_on_left, on_left);
        }},
       {"shading", style_object<parse_shading>},
       {"highlights", style_object<parse_highlights>},

@@ -207,7 +207,7 @@ void check_finite(const Vector3d& v, const char* field) {
 BodyParams body_params(const HeadParams& head) {
   BodyParams b;
   const Vector3d& r = head.radii;
-  if (head.shape == "ellipsoid") {
+  if (head.shape == HeadKind::Ellipsoid) {
     b.neck_top = Vector3d(0, -0.43 * r.y(), -0.13 * r.z());
     b.neck_radius = 0.65 * r.x();
   }
@@ -255,7 +255,7 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
   };
 
   if (body_.head) {
-    if (head.shape == "ellipsoid")
+    if (head.shape == HeadKind::Ellipsoid)
       place_ellipsoid(sphere, k, Vector3d::Zero(), head.radii, head_);
     else
       head_ = head.mesh;

@@ -70,7 +70,7 @@ Projector::Projector(const HeadGeometry& head, const CameraParams& camera,
   options_.light_dir.normalize();
   if (options_.body) validate(*options_.body);
   Bullet& b = *bullet_;
-  if (head.shape == "ellipsoid") {
+  if (head.shape == HeadKind::Ellipsoid) {
     const btVector3 centre(0, 0, 0);
     const btScalar radius = 1;
     auto outer = std::make_unique<btMultiSphereShape>(&centre, &radius, 1);

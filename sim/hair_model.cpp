@@ -24,8 +24,6 @@ void check_hair(const HairParams& h) {
   if (!(h.length > 0) || !std::isfinite(h.length)) fail("length", "must be a positive length");
   if (!(h.length_variation >= 0 && h.length_variation < 1))
     fail("length_variation", "must be in [0, 1)");
-  if (h.style != "straight" && h.style != "wavy" && h.style != "curly")
-    fail("style", "expected \"straight\", \"wavy\" or \"curly\", got \"" + h.style + "\"");
   if (!(h.amplitude >= 0) || !std::isfinite(h.amplitude)) fail("amplitude", "must be >= 0");
   if (!(h.frequency >= 0) || !std::isfinite(h.frequency)) fail("frequency", "must be >= 0");
   if (!(h.comb >= 0) || !std::isfinite(h.comb)) fail("comb", "must be >= 0");
@@ -126,7 +124,7 @@ Polyline grow_strand(const HairParams& h, const HeadShape& head, const Vector3d&
     line.push_back(p);
   }
 
-  if (h.style != "straight" && h.amplitude > 0 && h.frequency > 0) {
+  if (h.style != HairCurl::Straight && h.amplitude > 0 && h.frequency > 0) {
     // Offsets in a parallel-transported frame (u starts sideways, across the lay of the hair),
     // faded in over the first 3 cm so roots sit on the scalp.
     Vector3d t0 = (line[1] - line[0]).normalized();
@@ -145,7 +143,7 @@ Polyline grow_strand(const HairParams& h, const HeadShape& head, const Vector3d&
       const double x = std::clamp(arc / 0.03, 0.0, 1.0);
       const double fade = x * x * (3 - 2 * x);
       const double phase = 2 * M_PI * h.frequency * arc;
-      Vector3d offset = h.style == "wavy"
+      Vector3d offset = h.style == HairCurl::Wavy
                             ? Vector3d(std::sin(phase) * u)
                             : Vector3d((std::cos(phase) - 1) * u + std::sin(phase) * v);
       out.push_back(line[i] + h.amplitude * fade * offset);

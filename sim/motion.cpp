@@ -16,23 +16,29 @@ struct Cycle {
   std::vector<Keyframe> keys;
 };
 
-Cycle preset_cycle(const std::string& name) {
+// The cycle of a generated preset (not None or Keys, which motion_keys handles itself).
+Cycle preset_cycle(MotionPreset preset) {
   const auto key = [](double t, Vector3d pos, Vector3d ypr) { return Keyframe{t, pos, ypr}; };
   const Vector3d o = Vector3d::Zero();
-  if (name == "turn")  // look right, back, left, back
-    return {4.0,
-            {key(0.0, o, o), key(0.9, o, {65, 0, 0}), key(1.5, o, {65, 0, 0}), key(2.4, o, o),
-             key(3.2, o, {-50, 5, 0})}};
-  if (name == "nod")
-    return {1.2, {key(0.0, o, o), key(0.45, o, {0, 28, 0}), key(0.9, o, {0, -8, 0})}};
-  if (name == "shake")  // a violent "no": +-40 degrees at about 2.8 Hz
-    return {0.36, {key(0.0, o, {-40, 0, 0}), key(0.18, o, {40, 0, 0})}};
-  if (name == "walk")  // bob twice per stride, sway once, a little yaw and roll
-    return {1.0,
-            {key(0.0, {0.02, 0, 0}, {4, 0, -3}), key(0.25, {0, -0.015, 0}, {0, 2, 0}),
-             key(0.5, {-0.02, 0, 0}, {-4, 0, 3}), key(0.75, {0, -0.015, 0}, {0, 2, 0})}};
-  throw std::invalid_argument("motion.preset: unknown preset \"" + name +
-                              "\" (expected none, turn, nod, shake, walk or keys)");
+  switch (preset) {
+    case MotionPreset::Turn:  // look right, back, left, back
+      return {4.0,
+              {key(0.0, o, o), key(0.9, o, {65, 0, 0}), key(1.5, o, {65, 0, 0}), key(2.4, o, o),
+               key(3.2, o, {-50, 5, 0})}};
+    case MotionPreset::Nod:
+      return {1.2, {key(0.0, o, o), key(0.45, o, {0, 28, 0}), key(0.9, o, {0, -8, 0})}};
+    case MotionPreset::Shake:  // a violent "no": +-40 degrees at about 2.8 Hz
+      return {0.36, {key(0.0, o, {-40, 0, 0}), key(0.18, o, {40, 0, 0})}};
+    case MotionPreset::Walk:  // bob twice per stride, sway once, a little yaw and roll
+      return {1.0,
+              {key(0.0, {0.02, 0, 0}, {4, 0, -3}), key(0.25, {0, -0.015, 0}, {0, 2, 0}),
+               key(0.5, {-0.02, 0, 0}, {-4, 0, 3}), key(0.75, {0, -0.015, 0}, {0, 2, 0})}};
+    case MotionPreset::None:
+    case MotionPreset::Keys:
+      break;
+  }
+  throw std::logic_error(std::string("preset_cycle: \"") + choice_name(preset) +
+                         "\" is not a generated motion");
 }
 
 void check_keys(const std::vector<Keyframe>& keys) {
@@ -69,7 +75,7 @@ Vector3d hermite(const Vector3d& p0, const Vector3d& m0, const Vector3d& p1, con
 std::vector<Keyframe> motion_keys(const MotionParams& motion) {
   if (!std::isfinite(motion.duration) || motion.duration <= 0)
     throw std::invalid_argument("motion.duration: must be a positive number of seconds");
-  if (motion.preset == "keys") {
+  if (motion.preset == MotionPreset::Keys) {
     check_keys(motion.keys);
     return motion.keys;
   }
@@ -80,7 +86,7 @@ std::vector<Keyframe> motion_keys(const MotionParams& motion) {
   if (!(motion.settle >= 0) || !std::isfinite(motion.settle))
     throw std::invalid_argument("motion.settle: must be a non-negative number of seconds");
   std::vector<Keyframe> keys{Keyframe{}};
-  if (motion.preset == "none") return keys;
+  if (motion.preset == MotionPreset::None) return keys;
   const Cycle cycle = preset_cycle(motion.preset);
   const double period = cycle.period / motion.speed;
   // Repeat whole cycles past the end, then close on the rest pose.

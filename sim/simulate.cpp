@@ -87,8 +87,6 @@ void check_sim_params(const SimParams& s) {
   const auto non_negative = [&](double v, const char* field) {
     if (!(v >= 0) || !std::isfinite(v)) fail(field, "must be a finite number >= 0");
   };
-  if (s.model != "dftl" && s.model != "featherstone" && s.model != "rope")
-    fail("model", "expected \"dftl\", \"featherstone\" or \"rope\", got \"" + s.model + "\"");
   positive(s.fps, "fps");
   positive(s.step_rate, "step_rate");
   if (s.step_rate < s.fps) fail("step_rate", "must be at least sim.fps");
@@ -165,10 +163,10 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   }
   const Environment env(setup);
   const SimParams& sp = setup.sim;
-  std::unique_ptr<StrandSolver> solver = sp.model == "featherstone"
-                                             ? make_featherstone_solver(env, setup.rest)
-                                         : sp.model == "rope" ? make_rope_solver(env, setup.rest)
-                                                              : make_dftl_solver(env, setup.rest);
+  std::unique_ptr<StrandSolver> solver =
+      sp.model == SimModel::Featherstone ? make_featherstone_solver(env, setup.rest)
+      : sp.model == SimModel::Rope       ? make_rope_solver(env, setup.rest)
+                                         : make_dftl_solver(env, setup.rest);
   const double dt = 1.0 / sp.step_rate;
   const int frames = static_cast<int>(std::floor(setup.duration * sp.fps + 1e-9)) + 1;
   Animation anim;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 
 #include "vector/hair_shading.hpp"
@@ -24,6 +25,9 @@
 namespace wisp::vector {
 
 enum class ShadingModel { Faraj, Lit };
+constexpr std::array<sim::Choice<ShadingModel>, 2> choices(ShadingModel) {
+  return {{{"faraj", ShadingModel::Faraj}, {"lit", ShadingModel::Lit}}};
+}
 
 struct ShadingStyle {
   ShadingModel model = ShadingModel::Faraj;
@@ -43,6 +47,11 @@ struct ShadingStyle {
 };
 
 enum class HighlightShape { None, Band, Anime };
+constexpr std::array<sim::Choice<HighlightShape>, 3> choices(HighlightShape) {
+  return {{{"none", HighlightShape::None},
+           {"band", HighlightShape::Band},
+           {"anime", HighlightShape::Anime}}};
+}
 
 // Stylised highlights as closed diffusion curves: the highlight colour inside, an insulating
 // (Neumann) side outside, so the wisp's shading around them is undisturbed.

@@ -49,7 +49,8 @@ double ms_since(Clock::time_point t0) {
 }
 
 struct RenderArgs {
-  std::string scene, outdir, frames, size, anim, svg_style = "embedded";
+  std::string scene, outdir, frames, size, anim;
+  std::string svg_style = sim::choice_name(render::SvgStyle::Embedded);
   int threads = 0;
   bool force = false, quiet = false, masks = false;
 };
@@ -92,9 +93,6 @@ void run_render(const RenderArgs& a) {
   }
   const auto [width, height] =
       a.size.empty() ? std::pair<int, int>{0, 0} : render::parse_size("--size", a.size);
-  if (a.svg_style != "embedded" && a.svg_style != "flat")
-    throw std::invalid_argument("--svg-style: expected 'embedded' or 'flat', got '" + a.svg_style +
-                                "'");
 
   // Validate the scene before touching the output folder.
   (void)io::load_scene(a.scene);
@@ -140,9 +138,8 @@ void run_render(const RenderArgs& a) {
                                 " frames (0:" + std::to_string(n) + ")");
 
   render::FrameSetup setup = render::frame_setup(scene);
-  setup.flat_regions = a.svg_style == "flat";
-  const render::SvgStyle svg_style =
-      setup.flat_regions ? render::SvgStyle::Flat : render::SvgStyle::Embedded;
+  const render::SvgStyle svg_style = *sim::parse_choice<render::SvgStyle>(a.svg_style);
+  setup.flat_regions = svg_style == render::SvgStyle::Flat;
 
   const auto done = [&](int k) {
     return fs::exists(out / frame_name(k, "png")) && fs::exists(out / frame_name(k, "svg"));
@@ -289,7 +286,8 @@ void add_render_command(CLI::App& app) {
                   "Render this saved animation (.wsim) instead of simulating");
   cmd->add_option("--svg-style", args->svg_style,
                   "embedded: shading as an image clipped by the silhouette; flat: a gradient "
-                  "path per visible wisp region");
+                  "path per visible wisp region")
+      ->check(CLI::IsMember(sim::choice_names<render::SvgStyle>()));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 256));
   cmd->add_flag("--force", args->force, "Render frames that already exist again");

@@ -29,10 +29,10 @@ TEST_CASE("an empty scene takes every default", "[io][scene]") {
   const wisp::io::Scene s = parse_scene(json::object(), "dir/scene.json");
   CHECK(s.hair.count == 150);
   CHECK(s.hair.segments == 24);
-  CHECK(s.sim.model == "dftl");
-  CHECK(s.motion.preset == "turn");
+  CHECK(s.sim.model == wisp::sim::SimModel::Dftl);
+  CHECK(s.motion.preset == wisp::sim::MotionPreset::Turn);
   CHECK(s.camera.width == 800);
-  CHECK(s.head.shape == "ellipsoid");
+  CHECK(s.head.shape == wisp::sim::HeadKind::Ellipsoid);
 }
 
 TEST_CASE("every part of a scene is read", "[io][scene]") {
@@ -49,11 +49,11 @@ TEST_CASE("every part of a scene is read", "[io][scene]") {
   CHECK(s.head.mesh_scale == 0.01);
   CHECK(s.head.shoulders);
   CHECK(s.hair.count == 12);
-  CHECK(s.hair.style == "curly");
+  CHECK(s.hair.style == wisp::sim::HairCurl::Curly);
   CHECK(s.hair.seed == 5);
   REQUIRE(s.motion.keys.size() == 2);
   CHECK(s.motion.keys[1].ypr_deg.x() == 30);
-  CHECK(s.sim.model == "rope");
+  CHECK(s.sim.model == wisp::sim::SimModel::Rope);
   CHECK(s.sim.wind.velocity.x() == 1);
   CHECK(s.camera.height == 240);
 }
