@@ -141,6 +141,17 @@ class Fields {
                  suggest(it.key(), std::vector<std::string>(known_.begin(), known_.end())));
   }
 
+  // The validate() of the struct this object filled (sim/params.hpp): its "field: what" gets
+  // the file and this object's path in front ("scene.json: hair.count: ...").
+  template <class Params>
+  void check(const Params& params) const {
+    try {
+      sim::validate_part(params, where_);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(file_ + ": " + e.what());
+    }
+  }
+
   static std::string suggest(const std::string& key, const std::vector<std::string>& known) {
     std::string best;
     std::size_t best_d = std::max<std::size_t>(2, key.size() / 3) + 1;
@@ -175,21 +186,16 @@ void parse_head(Fields& f, Scene& s) {
   sim::HeadParams& h = s.head;
   f.choice("shape", h.shape);
   f.get("radii", h.radii);
-  require(f, h.radii.minCoeff() > 0, "radii", "every radius must be positive");
   std::string mesh;
   f.get("mesh", mesh);
   if (!mesh.empty()) h.mesh = resolve(s.path, mesh);
-  require(f, h.shape != sim::HeadKind::Mesh || !mesh.empty(), "mesh",
-          "shape \"mesh\" needs an OBJ file name");
   f.get("mesh_scale", h.mesh_scale);
-  require(f, h.mesh_scale > 0, "mesh_scale", "must be positive");
   f.get("mesh_offset", h.mesh_offset);
   f.get("shoulders", h.shoulders);
   f.get("shoulder_center", h.shoulder_center);
   f.get("shoulder_half_width", h.shoulder_half_width);
-  require(f, h.shoulder_half_width >= 0, "shoulder_half_width", "must be >= 0");
   f.get("shoulder_radius", h.shoulder_radius);
-  require(f, h.shoulder_radius > 0, "shoulder_radius", "must be positive");
+  f.check(h);
 }
 
 void parse_hair(Fields& f, Scene& s) {
@@ -198,54 +204,31 @@ void parse_hair(Fields& f, Scene& s) {
   std::string file;
   f.get("file", file);
   if (!file.empty()) h.file = resolve(s.path, file);
-  const bool procedural = h.source == sim::HairSource::Procedural;
-  require(f, procedural || !file.empty(), "file",
-          "source \"" + std::string(sim::choice_name(h.source)) + "\" needs a strand file name");
   f.get("count", h.count);
-  require(f, procedural ? h.count >= 1 : h.count >= 0, "count",
-          "must be " + std::string(procedural ? "at least 1" : ">= 0 (0 = all strands)") +
-              ", got " + std::to_string(h.count));
-  require(f, h.count <= 100000, "count", "at most 100000 guides");
   f.get("segments", h.segments);
-  require(f, procedural ? h.segments >= 1 : h.segments >= 0, "segments",
-          "must be at least 1 (0 keeps a file's points), got " + std::to_string(h.segments));
-  require(f, h.segments <= 1000, "segments", "at most 1000");
   f.get("length", h.length);
-  require(f, h.length > 0, "length", "must be a positive length in metres");
   f.get("length_variation", h.length_variation);
-  require(f, h.length_variation >= 0 && h.length_variation < 1, "length_variation",
-          "must be in [0, 1)");
   f.choice("style", h.style);
   f.get("amplitude", h.amplitude);
-  require(f, h.amplitude >= 0, "amplitude", "must be >= 0");
   f.get("frequency", h.frequency);
-  require(f, h.frequency >= 0, "frequency", "must be >= 0");
   f.get("parting_deg", h.parting_deg);
   f.get("comb", h.comb);
-  require(f, h.comb >= 0, "comb", "must be >= 0");
   f.get("scalp_angle_deg", h.scalp_angle_deg);
-  require(f, h.scalp_angle_deg > 0 && h.scalp_angle_deg <= 180, "scalp_angle_deg",
-          "must be in (0, 180]");
   f.get("face_angle_deg", h.face_angle_deg);
-  require(f, h.face_angle_deg >= 0 && h.face_angle_deg < 180, "face_angle_deg",
-          "must be in [0, 180)");
   f.get("seed", h.seed);
   f.get("file_scale", h.file_scale);
-  require(f, h.file_scale > 0, "file_scale", "must be positive");
   f.get("file_offset", h.file_offset);
   f.get("file_z_up", h.file_z_up);
+  f.check(h);
 }
 
 void parse_motion(Fields& f, Scene& s) {
   sim::MotionParams& m = s.motion;
   f.choice("preset", m.preset);
   f.get("duration", m.duration);
-  require(f, m.duration > 0 && m.duration <= 3600, "duration", "must be in (0, 3600] seconds");
   f.get("amplitude", m.amplitude);
   f.get("speed", m.speed);
-  require(f, m.speed > 0, "speed", "must be positive");
   f.get("settle", m.settle);
-  require(f, m.settle >= 0, "settle", "must be >= 0");
   if (const json* keys = f.find("keys")) {
     if (!keys->is_array()) f.fail("motion.keys", "expected an array of keyframes");
     for (std::size_t i = 0; i < keys->size(); ++i) {
@@ -255,55 +238,38 @@ void parse_motion(Fields& f, Scene& s) {
       k.get("position", key.position);
       k.get("ypr_deg", key.ypr_deg);
       k.finish();
-      if (i > 0 && !(key.time > m.keys.back().time))
-        k.fail(k.name("time"), "keyframe times must increase");
       m.keys.push_back(key);
     }
   }
-  require(f, m.preset != sim::MotionPreset::Keys || !m.keys.empty(), "keys",
-          "preset \"keys\" needs at least one keyframe");
+  f.check(m);
 }
 
 void parse_sim(Fields& f, Scene& s) {
   sim::SimParams& p = s.sim;
   f.choice("model", p.model);
   f.get("fps", p.fps);
-  require(f, p.fps > 0 && p.fps <= 1000, "fps", "must be in (0, 1000]");
   f.get("step_rate", p.step_rate);
-  require(f, p.step_rate >= p.fps && p.step_rate <= 100000, "step_rate",
-          "must be in [sim.fps, 100000] Hz");
   f.get("substeps", p.substeps);
-  require(f, p.substeps >= 1 && p.substeps <= 1000, "substeps", "must be in [1, 1000]");
   f.get("iterations", p.iterations);
-  require(f, p.iterations >= 1 && p.iterations <= 1000, "iterations", "must be in [1, 1000]");
   f.get("gravity", p.gravity);
   f.get("density", p.density);
-  require(f, p.density > 0, "density", "must be positive (kg/m)");
   f.get("bend_stiffness", p.bend_stiffness);
-  require(f, p.bend_stiffness >= 0, "bend_stiffness", "must be >= 0 (N m^2)");
   f.get("root_stiffness", p.root_stiffness);
-  require(f, p.root_stiffness >= 0, "root_stiffness", "must be >= 0");
   f.get("damping", p.damping);
-  require(f, p.damping >= 0, "damping", "must be >= 0 (1/s)");
   f.get("air_drag", p.air_drag);
-  require(f, p.air_drag >= 0, "air_drag", "must be >= 0 (1/s)");
   f.get("collision", p.collision);
   f.get("collision_margin", p.collision_margin);
-  require(f, p.collision_margin >= 0, "collision_margin", "must be >= 0 (m)");
   f.get("max_speed", p.max_speed);
-  require(f, p.max_speed > 0, "max_speed", "must be positive (m/s)");
   f.get("preroll", p.preroll);
-  require(f, p.preroll >= 0 && p.preroll <= 600, "preroll", "must be in [0, 600] seconds");
   if (const json* wind = f.find("wind")) {
     Fields w(*wind, "sim.wind", f.file());
     w.get("velocity", p.wind.velocity);
     w.get("gust", p.wind.gust);
-    require(w, p.wind.gust >= 0, "gust", "must be >= 0 (m/s)");
     w.get("gust_frequency", p.wind.gust_frequency);
-    require(w, p.wind.gust_frequency >= 0, "gust_frequency", "must be >= 0 (Hz)");
     w.get("seed", p.wind.seed);
     w.finish();
   }
+  f.check(p);
 }
 
 void parse_camera(Fields& f, Scene& s) {
@@ -311,17 +277,11 @@ void parse_camera(Fields& f, Scene& s) {
   f.get("eye", c.eye);
   f.get("target", c.target);
   f.get("up", c.up);
-  require(f, (c.target - c.eye).norm() > 1e-9, "target", "must differ from camera.eye");
-  require(f, (c.target - c.eye).cross(c.up).norm() > 1e-9, "up",
-          "must not be parallel to the view");
   f.get("fov_deg", c.fov_deg);
-  require(f, c.fov_deg > 0 && c.fov_deg < 180, "fov_deg", "must be in (0, 180)");
   f.get("width", c.width);
-  require(f, c.width >= 1 && c.width <= 65536, "width", "must be in [1, 65536] pixels");
   f.get("height", c.height);
-  require(f, c.height >= 1 && c.height <= 65536, "height", "must be in [1, 65536] pixels");
   f.get("hysteresis", c.hysteresis);
-  require(f, c.hysteresis >= 0, "hysteresis", "must be >= 0 (m)");
+  f.check(c);
 }
 
 // Relative file names inside a style resolve from the folder of the file that names them.
@@ -601,15 +561,10 @@ void parse_render(Fields& f, Scene& s) {
   f.get("body", r.body);
   f.get("torso", r.torso);
   f.get("solver_tolerance", r.solver_tolerance);
-  require(f, r.solver_tolerance > 0 && r.solver_tolerance < 1, "solver_tolerance",
-          "must be in (0, 1) (relative residual)");
   f.get("warm_start_block", r.warm_start_block);
-  require(f, r.warm_start_block >= 1 && r.warm_start_block <= 100000, "warm_start_block",
-          "must be in [1, 100000] frames");
   f.get("video", r.video);
   f.get("contact_sheet_columns", r.contact_sheet_columns);
-  require(f, r.contact_sheet_columns >= 1 && r.contact_sheet_columns <= 100,
-          "contact_sheet_columns", "must be in [1, 100]");
+  f.check(r);
 }
 
 // The parts of a scene.
@@ -623,6 +578,15 @@ const std::map<std::string, std::function<void(Fields&, Scene&)>>& parts() {
 }
 
 }  // namespace
+
+void validate(const RenderParams& r) {
+  if (!(r.solver_tolerance > 0 && r.solver_tolerance < 1))
+    throw std::invalid_argument("solver_tolerance: must be in (0, 1) (relative residual)");
+  if (r.warm_start_block < 1 || r.warm_start_block > 100000)
+    throw std::invalid_argument("warm_start_block: must be in [1, 100000] frames");
+  if (r.contact_sheet_columns < 1 || r.contact_sheet_columns > 100)
+    throw std::invalid_argument("contact_sheet_columns: must be in [1, 100]");
+}
 
 Scene parse_scene(const json& doc, const std::filesystem::path& path) {
   Scene scene;

@@ -199,7 +199,7 @@ double segment_distance2(const Vector3d& p1, const Vector3d& q1, const Vector3d&
 }
 
 void check_finite(const Vector3d& v, const char* field) {
-  if (!v.allFinite()) throw std::invalid_argument(std::string("body.") + field + ": not finite");
+  if (!v.allFinite()) throw std::invalid_argument(std::string(field) + ": not finite");
 }
 
 }  // namespace
@@ -222,7 +222,7 @@ BodyParams body_params(const HeadParams& head) {
 
 void validate(const BodyParams& b) {
   const auto fail = [](const char* field, const std::string& what) {
-    throw std::invalid_argument(std::string("body.") + field + ": " + what);
+    throw std::invalid_argument(std::string(field) + ": " + what);
   };
   if (b.slices < 3 || b.slices > 1024) fail("slices", "must be in [3, 1024]");
   if (b.stacks < 2 || b.stacks > 1024) fail("stacks", "must be in [2, 1024]");
@@ -242,7 +242,7 @@ void validate(const BodyParams& b) {
 }
 
 BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
-    : body_((validate(body), body)), shape_(head) {
+    : body_((validate_part(body, "body"), body)), shape_(head) {
   const Template sphere = lathe(body_.slices, body_.stacks, 0);
   const double k = circumscribe_factor(sphere);
   const int capsule_stacks = body_.stacks + body_.stacks % 2;

@@ -41,18 +41,6 @@ Cycle preset_cycle(MotionPreset preset) {
                          "\" is not a generated motion");
 }
 
-void check_keys(const std::vector<Keyframe>& keys) {
-  if (keys.empty()) throw std::invalid_argument("motion.keys: at least one keyframe is needed");
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const Keyframe& k = keys[i];
-    const std::string at = "motion.keys[" + std::to_string(i) + "]";
-    if (!std::isfinite(k.time) || !k.position.allFinite() || !k.ypr_deg.allFinite())
-      throw std::invalid_argument(at + ": not a finite number");
-    if (i > 0 && !(k.time > keys[i - 1].time))
-      throw std::invalid_argument(at + ".time: keyframe times must increase");
-  }
-}
-
 // Catmull-Rom tangents for non-uniform times; zero at both ends so the motion starts and ends at
 // rest.
 template <class Get>
@@ -73,18 +61,8 @@ Vector3d hermite(const Vector3d& p0, const Vector3d& m0, const Vector3d& p1, con
 }  // namespace
 
 std::vector<Keyframe> motion_keys(const MotionParams& motion) {
-  if (!std::isfinite(motion.duration) || motion.duration <= 0)
-    throw std::invalid_argument("motion.duration: must be a positive number of seconds");
-  if (motion.preset == MotionPreset::Keys) {
-    check_keys(motion.keys);
-    return motion.keys;
-  }
-  if (!(motion.speed > 0) || !std::isfinite(motion.speed))
-    throw std::invalid_argument("motion.speed: must be a positive number");
-  if (!std::isfinite(motion.amplitude))
-    throw std::invalid_argument("motion.amplitude: not a finite number");
-  if (!(motion.settle >= 0) || !std::isfinite(motion.settle))
-    throw std::invalid_argument("motion.settle: must be a non-negative number of seconds");
+  validate_part(motion, "motion");
+  if (motion.preset == MotionPreset::Keys) return motion.keys;
   std::vector<Keyframe> keys{Keyframe{}};
   if (motion.preset == MotionPreset::None) return keys;
   const Cycle cycle = preset_cycle(motion.preset);
@@ -109,7 +87,7 @@ Eigen::Quaterniond rotation_from_ypr(const Vector3d& ypr_deg) {
 }
 
 HeadMotion::HeadMotion(std::vector<Keyframe> keys) : keys_(std::move(keys)) {
-  check_keys(keys_);
+  validate_part(keys_, "motion");
   dpos_ = tangents(keys_, [](const Keyframe& k) { return k.position; });
   dypr_ = tangents(keys_, [](const Keyframe& k) { return k.ypr_deg; });
 }

@@ -1,6 +1,7 @@
 // The parameters of the physical half of a scene: head, hair model, head motion, simulator and
-// camera. Plain structs with documented defaults (docs/scene.md lists every field with its unit);
-// io/scene_json.cpp fills them from the scene JSON and validates them, sim/ consumes them.
+// camera. Plain structs with documented defaults (docs/scene.md lists every field with its unit)
+// and one validate() each; io/scene_json.cpp fills them from the scene JSON and validates them,
+// sim/ validates what it is given again and consumes it.
 //
 // Units: metres, seconds, kilograms; angles given by users are in degrees. Head-local frame: x to
 // the viewer's right when the head faces the camera, y up, z forward (out of the face). The
@@ -11,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -149,5 +151,27 @@ struct CameraParams {
   int height = 800;
   double hysteresis = 0.004;  // occlusion hysteresis band (m): see sim/camera.hpp
 };
+
+// Each validate() throws std::invalid_argument("field: what") for the first field out of its
+// range, non-finite, or inconsistent with another ("count: must be at least 1, got 0"). Whoever
+// reads the struct from somewhere puts the place in front: io/ the file and the part
+// ("scene.json: hair.count: ..."), sim's entry points the part (validate_part).
+void validate(const HeadParams& head);
+void validate(const HairParams& hair);
+void validate(const std::vector<Keyframe>& keys);  // a motion's keys: "keys[2].time: ..."
+void validate(const MotionParams& motion);
+void validate(const WindParams& wind);
+void validate(const SimParams& sim);
+void validate(const CameraParams& camera);
+
+// validate(params), with `part` before the field in the message: "hair.count: ...".
+template <class Params>
+void validate_part(const Params& params, const std::string& part) {
+  try {
+    validate(params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(part + "." + e.what());
+  }
+}
 
 }  // namespace wisp::sim

@@ -287,7 +287,7 @@ TEST_CASE("bad body parameters are rejected naming the field", "[sim][body]") {
   CHECK_THROWS_WITH(BodyModel(HeadGeometry{}, b), Catch::Contains("body.slices"));
   b = BodyParams{};
   b.chest_radii.y() = std::nan("");
-  CHECK_THROWS_WITH(validate(b), Catch::Contains("body.chest_radii"));
+  CHECK_THROWS_WITH(validate(b), Catch::StartsWith("chest_radii: "));
 }
 
 TEST_CASE("the drawn neck and torso hide strands behind them; frames carry the light",
