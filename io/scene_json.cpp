@@ -146,7 +146,10 @@ class Fields {
   template <class Params>
   void check(const Params& params) const {
     try {
-      sim::validate_part(params, where_);
+      if (where_.empty())
+        validate(params);
+      else
+        sim::validate_part(params, where_);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(file_ + ": " + e.what());
     }
@@ -172,10 +175,6 @@ class Fields {
   std::string where_, file_;
   std::set<std::string> known_;
 };
-
-void require(Fields& f, bool ok, const char* key, const std::string& what) {
-  if (!ok) f.fail(f.name(key), what);
-}
 
 std::filesystem::path resolve(const std::filesystem::path& scene, const std::string& file) {
   const std::filesystem::path p(file);
@@ -313,38 +312,20 @@ void parse_shading(Fields& f, vector::HairStyle& st) {
   f.color("ramp_tint", s.ramp_tint);
   f.get("hard_bands", s.hard_bands);
   f.get("band_threshold", s.band_threshold);
-  require(f, s.band_threshold > 0 && s.band_threshold <= 1, "band_threshold",
-          "must be in (0, 1] (a colour difference)");
   vector::Lighting& l = s.lighting;
-  for (auto [key, v] : {std::pair<const char*, double*>{"ambient", &l.ambient},
-                        {"kajiya_diffuse", &l.kajiya_diffuse},
-                        {"lambert", &l.lambert},
-                        {"specular", &l.specular}}) {
-    f.get(key, *v);
-    require(f, *v >= 0 && *v <= 10, key, "must be a weight in [0, 10]");
-  }
+  f.get("ambient", l.ambient);
+  f.get("kajiya_diffuse", l.kajiya_diffuse);
+  f.get("lambert", l.lambert);
+  f.get("specular", l.specular);
   f.get("shininess", l.shininess);
-  require(f, l.shininess > 0 && l.shininess <= 10000, "shininess", "must be in (0, 10000]");
   f.get("head_shadow", l.head_shadow);
-  require(f, l.head_shadow >= 0 && l.head_shadow <= 1, "head_shadow", "must be in [0, 1]");
   f.get("head_offset", l.head_offset);
-  require(f, l.head_offset >= -1 && l.head_offset <= 1, "head_offset", "must be in [-1, 1]");
   f.get("back_exponent", l.back_exponent);
-  require(f, l.back_exponent >= 0 && l.back_exponent <= 100, "back_exponent",
-          "must be in [0, 100]");
   f.get("depth_near", s.depth_near);
-  require(f, s.depth_near >= 0, "depth_near", "must be >= 0 metres (0: the frame's nearest hair)");
   f.get("depth_far", s.depth_far);
-  require(f, s.depth_far >= 0, "depth_far", "must be >= 0 metres (0: the frame's farthest hair)");
-  require(f, s.depth_near == 0 || s.depth_far == 0 || s.depth_far > s.depth_near, "depth_far",
-          "must be greater than depth_near");
   f.get("metric_shininess", s.metric_shininess);
-  require(f, s.metric_shininess > 0 && s.metric_shininess <= 10000, "metric_shininess",
-          "must be in (0, 10000]");
   f.get("centre_line", s.centre_line);
   f.get("sample_px", s.sample_px);
-  require(f, s.sample_px >= 0.25 && s.sample_px <= 100, "sample_px",
-          "must be in [0.25, 100] pixels");
 }
 
 void parse_highlights(Fields& f, vector::HairStyle& st) {
@@ -352,51 +333,26 @@ void parse_highlights(Fields& f, vector::HairStyle& st) {
   f.choice("shape", h.shape);
   f.color("color", h.color);
   f.get("threshold", h.threshold);
-  require(f, h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
   f.get("shininess", h.shininess);
-  require(f, h.shininess > 0 && h.shininess <= 10000, "shininess", "must be in (0, 10000]");
   f.get("shin_weight", h.shin_weight);
-  require(f, h.shin_weight >= 0 && h.shin_weight <= 1, "shin_weight", "must be in [0, 1]");
   f.get("max_width", h.max_width);
-  require(f, h.max_width > 0 && h.max_width <= 1, "max_width",
-          "must be in (0, 1] (a fraction of the wisp's half-width)");
   f.get("teeth", h.teeth);
-  require(f, h.teeth >= 1 && h.teeth <= 16, "teeth", "must be in [1, 16]");
   f.get("link_distance", h.link_distance);
-  require(f, h.link_distance >= 0, "link_distance", "must be >= 0 pixels");
   f.get("min_cluster", h.min_cluster);
-  require(f, h.min_cluster >= 1, "min_cluster", "must be at least 1");
 }
 
 void parse_ink(Fields& f, vector::HairStyle& st) {
   vector::InkStyle& k = st.ink;
   f.get("silhouette_width", k.silhouette_width);
-  require(f, k.silhouette_width >= 0 && k.silhouette_width <= 1000, "silhouette_width",
-          "must be a width in [0, 1000] pixels (0: no silhouette ink)");
   f.get("occlusion_width", k.occlusion_width);
-  require(f, k.occlusion_width >= 0 && k.occlusion_width <= 1000, "occlusion_width",
-          "must be a width in [0, 1000] pixels (0: no occlusion ink)");
   f.get("reference_size", k.reference_size);
-  require(f, k.reference_size >= 1 && k.reference_size <= 65536, "reference_size",
-          "must be in [1, 65536] pixels");
   f.color("color", k.color);
   f.get("root_fade", k.root_fade);
-  require(f, k.root_fade >= 0 && k.root_fade <= 1, "root_fade",
-          "must be in [0, 1] (a fraction of the strand; 0: no taper)");
   f.get("root_width", k.root_width);
-  require(f, k.root_width >= 0 && k.root_width <= 1, "root_width",
-          "must be in [0, 1] (the width factor at the root)");
   f.get("tip_fade", k.tip_fade);
-  require(f, k.tip_fade >= 0 && k.tip_fade <= 1, "tip_fade",
-          "must be in [0, 1] (a fraction of the strand; 0: no taper)");
   f.get("tip_width", k.tip_width);
-  require(f, k.tip_width >= 0 && k.tip_width <= 1, "tip_width",
-          "must be in [0, 1] (the width factor at the tip)");
   f.get("end_taper", k.end_taper);
-  require(f, k.end_taper >= 0, "end_taper", "must be >= 0 pixels");
   f.get("fit_tolerance", k.fit_tolerance);
-  require(f, k.fit_tolerance > 0 && k.fit_tolerance <= 5, "fit_tolerance",
-          "must be in (0, 5] pixels");
 }
 
 // A nested object of the style, parsed by `parse` and checked for unknown keys.
@@ -415,12 +371,7 @@ using StyleField = std::function<void(Fields&, const char* key, vector::HairStyl
 const std::vector<std::pair<const char*, StyleField>>& style_fields() {
   using vector::HairStyle;
   static const std::vector<std::pair<const char*, StyleField>> table = {
-      {"width",
-       [](Fields& f, const char* k, HairStyle& s) {
-         f.get(k, s.geometry.width);
-         require(f, s.geometry.width > 0 && s.geometry.width <= 1, k,
-                 "must be a width in (0, 1] metres");
-       }},
+      {"width", [](Fields& f, const char* k, HairStyle& s) { f.get(k, s.geometry.width); }},
       {"profile",
        [](Fields& f, const char* k, HairStyle& s) {
          if (!f.find(k)) return;
@@ -439,21 +390,14 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
            return;
          }
          s.geometry.curvature_clamp = f.number(*v, f.name(k));
-         require(f, s.geometry.curvature_clamp > 0, k, "must be > 0 (null disables the clamp)");
        }},
       {"hair_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.hair); }},
       {"shadow_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.shadow); }},
       {"highlight_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.highlight); }},
       {"highlight_along",
-       [](Fields& f, const char* k, HairStyle& s) {
-         f.get(k, s.highlight_along);
-         require(f, s.highlight_along >= 0 && s.highlight_along <= 1, k, "must be in [0, 1]");
-       }},
+       [](Fields& f, const char* k, HairStyle& s) { f.get(k, s.highlight_along); }},
       {"highlight_spread",
-       [](Fields& f, const char* k, HairStyle& s) {
-         f.get(k, s.highlight_spread);
-         require(f, s.highlight_spread > 0 && s.highlight_spread <= 1, k, "must be in (0, 1]");
-       }},
+       [](Fields& f, const char* k, HairStyle& s) { f.get(k, s.highlight_spread); }},
       {"highlight_side",
        [](Fields& f, const char* k, HairStyle& s) {
          static constexpr std::array<sim::Choice<bool>, 2> on_left{
@@ -465,20 +409,6 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"ink", style_object<parse_ink>},
   };
   return table;
-}
-
-// Cross-field checks of a whole style; `f` names the object in messages.
-void check_style(Fields& f, const vector::HairStyle& st) {
-  try {
-    vector::validate(st.geometry);
-  } catch (const std::invalid_argument& e) {
-    f.fail("style", e.what());
-  }
-  const vector::Lighting& l = st.shading.lighting;
-  if (st.shading.model == vector::ShadingModel::Lit &&
-      !(l.ambient + l.kajiya_diffuse + l.lambert > 0))
-    f.fail(f.name("shading"),
-           "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");
 }
 
 // The folder of data/ (presets and ramps): $WISP_DATA_DIR, or the source tree's data/ folder
@@ -532,6 +462,7 @@ void apply_preset(Fields& f, const std::string& value, Scene& s) {
       if (!d->is_string()) p.fail("description", "expected a string");
     for (const auto& [key, read] : style_fields()) read(p, key, s.style);
     p.finish();
+    p.check(s.style);
   } catch (const std::invalid_argument& e) {
     f.fail(field, e.what());
   }
@@ -545,12 +476,12 @@ void parse_style(Fields& f, Scene& s) {
     apply_preset(f, p->get<std::string>(), s);
   }
   for (const auto& [key, read] : style_fields()) read(f, key, s.style);
-  check_style(f, s.style);
+  f.check(s.style);
 }
 
 void parse_light(Fields& f, Scene& s) {
   f.get("direction", s.light_dir);
-  require(f, s.light_dir.norm() > 1e-9, "direction", "must be a non-zero vector");
+  if (!(s.light_dir.norm() > 1e-9)) f.fail(f.name("direction"), "must be a non-zero vector");
   s.light_dir.normalize();
 }
 

@@ -198,10 +198,6 @@ double segment_distance2(const Vector3d& p1, const Vector3d& q1, const Vector3d&
   return (p1 + d1 * s - (p2 + d2 * t)).squaredNorm();
 }
 
-void check_finite(const Vector3d& v, const char* field) {
-  if (!v.allFinite()) throw std::invalid_argument(std::string(field) + ": not finite");
-}
-
 }  // namespace
 
 BodyParams body_params(const HeadParams& head) {
@@ -221,24 +217,20 @@ BodyParams body_params(const HeadParams& head) {
 }
 
 void validate(const BodyParams& b) {
-  const auto fail = [](const char* field, const std::string& what) {
-    throw std::invalid_argument(std::string(field) + ": " + what);
-  };
-  if (b.slices < 3 || b.slices > 1024) fail("slices", "must be in [3, 1024]");
-  if (b.stacks < 2 || b.stacks > 1024) fail("stacks", "must be in [2, 1024]");
-  check_finite(b.neck_top, "neck_top");
-  check_finite(b.neck_bottom, "neck_bottom");
-  check_finite(b.shoulders.center, "shoulder_center");
-  check_finite(b.chest_center, "chest_center");
-  if (!(b.neck_radius > 0) || !std::isfinite(b.neck_radius)) fail("neck_radius", "must be > 0");
-  if (!(b.shoulders.radius > 0) || !std::isfinite(b.shoulders.radius))
-    fail("shoulder_radius", "must be > 0");
-  if (!(b.shoulders.half_width >= 0) || !std::isfinite(b.shoulders.half_width))
-    fail("shoulder_half_width", "must be >= 0");
-  if (!(b.chest_radii.minCoeff() > 0) || !b.chest_radii.allFinite())
-    fail("chest_radii", "every radius must be > 0");
-  if (!(b.chest_exponent >= 1 && b.chest_exponent <= 16))
-    fail("chest_exponent", "must be in [1, 16]");
+  require(b.slices >= 3 && b.slices <= 1024, "slices", "must be in [3, 1024]");
+  require(b.stacks >= 2 && b.stacks <= 1024, "stacks", "must be in [2, 1024]");
+  require(b.neck_top.allFinite(), "neck_top", "not finite");
+  require(b.neck_bottom.allFinite(), "neck_bottom", "not finite");
+  require(b.shoulders.center.allFinite(), "shoulder_center", "not finite");
+  require(b.chest_center.allFinite(), "chest_center", "not finite");
+  require(b.neck_radius > 0 && std::isfinite(b.neck_radius), "neck_radius", "must be > 0");
+  require(b.shoulders.radius > 0 && std::isfinite(b.shoulders.radius), "shoulder_radius",
+          "must be > 0");
+  require(b.shoulders.half_width >= 0 && std::isfinite(b.shoulders.half_width),
+          "shoulder_half_width", "must be >= 0");
+  require(b.chest_radii.minCoeff() > 0 && b.chest_radii.allFinite(), "chest_radii",
+          "every radius must be > 0");
+  require(b.chest_exponent >= 1 && b.chest_exponent <= 16, "chest_exponent", "must be in [1, 16]");
 }
 
 BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)

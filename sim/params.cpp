@@ -8,10 +8,6 @@
 namespace wisp::sim {
 namespace {
 
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
-
 bool positive(double v) {
   return v > 0 && std::isfinite(v);
 }

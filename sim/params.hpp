@@ -164,6 +164,11 @@ void validate(const WindParams& wind);
 void validate(const SimParams& sim);
 void validate(const CameraParams& camera);
 
+// The building block of every validate(): throws std::invalid_argument("field: what") unless ok.
+inline void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
 // validate(params), with `part` before the field in the message: "hair.count: ...".
 template <class Params>
 void validate_part(const Params& params, const std::string& part) {

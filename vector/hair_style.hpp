@@ -111,4 +111,13 @@ struct HairStyle {
   InkStyle ink;
 };
 
+// Each throws std::invalid_argument("field: what") for the first field out of its range, the
+// field named as in the scene's `style` part (docs/style.md): "ink.tip_fade: must be in [0, 1]
+// ...". io/ puts the file and "style." in front. The HairStyle checks the wisp geometry a style
+// sets (width, curvature_clamp) and its three parts; build_wisps checks the whole WispStyle.
+void validate(const ShadingStyle& shading);  // with its Lighting, whose fields sit beside its own
+void validate(const HighlightStyle& highlights);
+void validate(const InkStyle& ink);
+void validate(const HairStyle& style);
+
 }  // namespace wisp::vector

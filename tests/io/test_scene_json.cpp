@@ -145,6 +145,14 @@ TEST_CASE("range errors are the stage's validate() messages behind the file and 
         "scene.json: camera.target: must differ from camera.eye");
   CHECK(error_of({{"render", {{"warm_start_block", 0}}}}) ==
         "scene.json: render.warm_start_block: must be in [1, 100000] frames");
+  CHECK(error_of({{"style", {{"highlights", {{"teeth", 17}}}}}}) ==
+        "scene.json: style.highlights.teeth: must be in [1, 16]");
+  CHECK(
+      error_of({{"style",
+                 {{"shading",
+                   {{"model", "lit"}, {"ambient", 0}, {"kajiya_diffuse", 0}, {"lambert", 0}}}}}}) ==
+      "scene.json: style.shading: lit shading needs a positive ambient, kajiya_diffuse or "
+      "lambert weight");
 }
 
 TEST_CASE("bad values are errors naming the field", "[io][scene]") {
