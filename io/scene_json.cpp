@@ -1,6 +1,7 @@
 // Scene JSON reader: see scene.hpp. Each part is a small function over a field reader that
 // remembers which keys it consumed, so whatever is left over is an unknown field, reported with
-// the nearest known name when it looks like a typo.
+// the nearest known name when it looks like a typo. Choices are read by their names
+// (sim/choices.hpp); ranges are left to each struct's own validate(), called once per part.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
