@@ -20,20 +20,20 @@ namespace wisp::bench {
 namespace {
 
 struct Run {
-  std::string model, note;
+  sim::SimModel model = sim::SimModel::Dftl;
+  std::string note;
   int guides = 0, links = 0, substeps = 0, iterations = 0;
   double duration = 0, wall = 0, stretch = 0, deepest = 0;
   std::string status = "ok";
 };
 
-Run run(const std::string& model, int guides, int links, double duration, int substeps,
-        int iterations) {
+Run run(sim::SimModel model, int guides, int links, double duration, int substeps, int iterations) {
   sim::HairParams hair;
   hair.count = guides;
   hair.segments = links;
-  hair.style = "wavy";
+  hair.style = sim::HairCurl::Wavy;
   sim::MotionParams motion;
-  motion.preset = "shake";
+  motion.preset = sim::MotionPreset::Shake;
   motion.duration = duration;
   sim::SimParams params;
   params.model = model;
@@ -47,7 +47,8 @@ Run run(const std::string& model, int guides, int links, double duration, int su
   r.substeps = substeps;
   r.iterations = iterations;
   r.duration = duration;
-  std::fprintf(stderr, "sim: %s, %d guides, %.1f s of shake...\n", model.c_str(), guides, duration);
+  std::fprintf(stderr, "sim: %s, %d guides, %.1f s of shake...\n", sim::choice_name(model), guides,
+               duration);
   const auto start = diffusion::Clock::now();
   sim::Animation anim;
   try {
@@ -73,7 +74,7 @@ void print(const Run& r, bool last) {
       "%d, "
       "\"simulated_s\": %.2f, \"wall_s\": %.3f, \"s_per_simulated_s\": %.4f, \"realtime_factor\": "
       "%.2f, \"max_stretch\": %.3g, \"min_head_distance_m\": %.4f, \"status\": \"%s\"}%s\n",
-      r.model.c_str(), r.guides, r.links, r.substeps, r.iterations, r.duration, r.wall,
+      sim::choice_name(r.model), r.guides, r.links, r.substeps, r.iterations, r.duration, r.wall,
       r.wall / r.duration, r.duration / r.wall, r.stretch, r.deepest, r.status.c_str(),
       last ? "" : ",");
 }
@@ -86,15 +87,15 @@ int run_sim(const std::vector<std::string>& args) {
   const double shot = quick ? 1.5 : 4.0;
   std::vector<Run> runs;
   for (int guides : {150, 300}) {
-    runs.push_back(run("dftl", guides, 24, shot, 4, 1));
-    runs.push_back(run("rope", guides, 24, shot, 4, 4));
-    runs.push_back(run("rope", guides, 24, shot, 4, 20));
+    runs.push_back(run(sim::SimModel::Dftl, guides, 24, shot, 4, 1));
+    runs.push_back(run(sim::SimModel::Rope, guides, 24, shot, 4, 4));
+    runs.push_back(run(sim::SimModel::Rope, guides, 24, shot, 4, 20));
   }
   // Explicit joint springs at the default stiffness: 16 links need about 80 sub-steps of a
   // 120 Hz step; the stable step shrinks like the link length squared, so 24 links need ~200.
-  runs.push_back(run("featherstone", 150, 16, full ? shot : 1.5, 80, 1));
-  runs.push_back(run("featherstone", 150, 24, 1.5, 80, 1));
-  if (full) runs.push_back(run("featherstone", 150, 24, shot, 200, 1));
+  runs.push_back(run(sim::SimModel::Featherstone, 150, 16, full ? shot : 1.5, 80, 1));
+  runs.push_back(run(sim::SimModel::Featherstone, 150, 24, 1.5, 80, 1));
+  if (full) runs.push_back(run(sim::SimModel::Featherstone, 150, 24, shot, 200, 1));
 
   std::printf(
       "{\n  \"benchmark\": \"sim\",\n  \"scene\": \"procedural wavy guides x 24 links, "
@@ -105,7 +106,8 @@ int run_sim(const std::vector<std::string>& args) {
   bool first = true;
   for (const Run& d : runs)
     for (const Run& r : runs)
-      if (d.model == "dftl" && r.model == "rope" && r.guides == d.guides) {
+      if (d.model == sim::SimModel::Dftl && r.model == sim::SimModel::Rope &&
+          r.guides == d.guides) {
         std::printf("%s\n    \"rope_%d_iterations_over_dftl_%d_guides\": %.2f", first ? "" : ",",
                     r.iterations, d.guides, r.wall / d.wall);
         first = false;

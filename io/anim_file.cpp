@@ -74,7 +74,7 @@ void write_animation(const std::filesystem::path& path, const sim::Animation& an
   w.put(static_cast<std::uint32_t>(first.size()));
   for (const auto& s : first) w.put(static_cast<std::uint32_t>(s.size()));
   const sim::HeadGeometry& h = anim.head;
-  w.put(std::uint32_t{h.shape == "mesh" ? 1u : 0u});
+  w.put(static_cast<std::uint32_t>(h.shape));
   w.vec(h.radii);
   w.put(static_cast<std::uint32_t>(h.mesh.vertices.size()));
   w.put(static_cast<std::uint32_t>(h.mesh.triangles.size()));
@@ -133,8 +133,9 @@ sim::Animation read_animation(const std::filesystem::path& path) {
   std::uint64_t total = 0;
   for (auto& n : samples) total += n = r.get<std::uint32_t>("strand table");
   const auto shape = r.get<std::uint32_t>("head");
-  if (shape > 1) throw std::runtime_error(name + ": unknown head shape " + std::to_string(shape));
-  anim.head.shape = shape == 1 ? "mesh" : "ellipsoid";
+  if (shape > static_cast<std::uint32_t>(sim::HeadKind::Mesh))
+    throw std::runtime_error(name + ": unknown head shape " + std::to_string(shape));
+  anim.head.shape = static_cast<sim::HeadKind>(shape);
   anim.head.radii = r.vec("head");
   const std::uint64_t vertices = r.get<std::uint32_t>("head");
   const std::uint64_t triangles = r.get<std::uint32_t>("head");

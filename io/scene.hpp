@@ -30,6 +30,9 @@ struct RenderParams {
   int contact_sheet_columns = 6;   // tiles per row of contact.png
 };
 
+// Throws std::invalid_argument("field: what") for a field out of range (see sim/params.hpp).
+void validate(const RenderParams& render);
+
 struct Scene {
   std::filesystem::path path;  // the scene file; relative file names inside resolve from its folder
   sim::HeadParams head;

@@ -198,16 +198,12 @@ double segment_distance2(const Vector3d& p1, const Vector3d& q1, const Vector3d&
   return (p1 + d1 * s - (p2 + d2 * t)).squaredNorm();
 }
 
-void check_finite(const Vector3d& v, const char* field) {
-  if (!v.allFinite()) throw std::invalid_argument(std::string("body.") + field + ": not finite");
-}
-
 }  // namespace
 
 BodyParams body_params(const HeadParams& head) {
   BodyParams b;
   const Vector3d& r = head.radii;
-  if (head.shape == "ellipsoid") {
+  if (head.shape == HeadKind::Ellipsoid) {
     b.neck_top = Vector3d(0, -0.43 * r.y(), -0.13 * r.z());
     b.neck_radius = 0.65 * r.x();
   }
@@ -221,28 +217,24 @@ BodyParams body_params(const HeadParams& head) {
 }
 
 void validate(const BodyParams& b) {
-  const auto fail = [](const char* field, const std::string& what) {
-    throw std::invalid_argument(std::string("body.") + field + ": " + what);
-  };
-  if (b.slices < 3 || b.slices > 1024) fail("slices", "must be in [3, 1024]");
-  if (b.stacks < 2 || b.stacks > 1024) fail("stacks", "must be in [2, 1024]");
-  check_finite(b.neck_top, "neck_top");
-  check_finite(b.neck_bottom, "neck_bottom");
-  check_finite(b.shoulders.center, "shoulder_center");
-  check_finite(b.chest_center, "chest_center");
-  if (!(b.neck_radius > 0) || !std::isfinite(b.neck_radius)) fail("neck_radius", "must be > 0");
-  if (!(b.shoulders.radius > 0) || !std::isfinite(b.shoulders.radius))
-    fail("shoulder_radius", "must be > 0");
-  if (!(b.shoulders.half_width >= 0) || !std::isfinite(b.shoulders.half_width))
-    fail("shoulder_half_width", "must be >= 0");
-  if (!(b.chest_radii.minCoeff() > 0) || !b.chest_radii.allFinite())
-    fail("chest_radii", "every radius must be > 0");
-  if (!(b.chest_exponent >= 1 && b.chest_exponent <= 16))
-    fail("chest_exponent", "must be in [1, 16]");
+  require(b.slices >= 3 && b.slices <= 1024, "slices", "must be in [3, 1024]");
+  require(b.stacks >= 2 && b.stacks <= 1024, "stacks", "must be in [2, 1024]");
+  require(b.neck_top.allFinite(), "neck_top", "not finite");
+  require(b.neck_bottom.allFinite(), "neck_bottom", "not finite");
+  require(b.shoulders.center.allFinite(), "shoulder_center", "not finite");
+  require(b.chest_center.allFinite(), "chest_center", "not finite");
+  require(b.neck_radius > 0 && std::isfinite(b.neck_radius), "neck_radius", "must be > 0");
+  require(b.shoulders.radius > 0 && std::isfinite(b.shoulders.radius), "shoulder_radius",
+          "must be > 0");
+  require(b.shoulders.half_width >= 0 && std::isfinite(b.shoulders.half_width),
+          "shoulder_half_width", "must be >= 0");
+  require(b.chest_radii.minCoeff() > 0 && b.chest_radii.allFinite(), "chest_radii",
+          "every radius must be > 0");
+  require(b.chest_exponent >= 1 && b.chest_exponent <= 16, "chest_exponent", "must be in [1, 16]");
 }
 
 BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
-    : body_((validate(body), body)), shape_(head) {
+    : body_((validate_part(body, "body"), body)), shape_(head) {
   const Template sphere = lathe(body_.slices, body_.stacks, 0);
   const double k = circumscribe_factor(sphere);
   const int capsule_stacks = body_.stacks + body_.stacks % 2;
@@ -255,7 +247,7 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
   };
 
   if (body_.head) {
-    if (head.shape == "ellipsoid")
+    if (head.shape == HeadKind::Ellipsoid)
       place_ellipsoid(sphere, k, Vector3d::Zero(), head.radii, head_);
     else
       head_ = head.mesh;
@@ -479,8 +471,8 @@ bool body_blocks(const BodyParams& body, const HeadPose& pose, const Vector3d& e
   const Vector3d centre = pose.position + body.chest_center;
   // The superellipsoid's inside function is convex, hence unimodal along the segment: a golden
   // section search finds its minimum (to 1e-9 of the segment, far below a millimetre).
-  const auto value = [&](double s) {
-    return superellipsoid_value(eye + s * (end - eye) - centre, radii, body.chest_exponent);
+  const auto value = [&](double f) {
+    return superellipsoid_value(eye + f * (end - eye) - centre, radii, body.chest_exponent);
   };
   double lo = 0, hi = 1;
   const double g = 0.5 * (std::sqrt(5.0) - 1);

@@ -56,8 +56,8 @@ struct BodyParams {
 // capsule), the neck scaled to the head's radii, the chest hung under the shoulders.
 BodyParams body_params(const HeadParams& head);
 
-// Throws std::invalid_argument naming the field ("body.neck_radius: ...") for non-finite values,
-// non-positive radii or tessellation counts out of range.
+// Throws std::invalid_argument naming the field ("neck_radius: ...", see validate() in
+// sim/params.hpp) for non-finite values, non-positive radii or tessellation counts out of range.
 void validate(const BodyParams& body);
 
 // A triangle in pixels (x right, y down, as ProjectedStrand::pixel). Front faces keep their

@@ -21,24 +21,12 @@ btVector3 bt(const Vector3d& v) {
 }  // namespace
 
 Camera Camera::look_at(const CameraParams& p) {
-  if (!p.eye.allFinite() || !p.target.allFinite() || !p.up.allFinite())
-    throw std::invalid_argument("camera.eye / camera.target / camera.up: not finite vectors");
-  const Vector3d f = p.target - p.eye;
-  if (f.norm() < 1e-9) throw std::invalid_argument("camera.target: must differ from camera.eye");
+  validate_part(p, "camera");
   Camera c;
   c.eye = p.eye;
-  c.forward = f.normalized();
-  const Vector3d r = c.forward.cross(p.up);
-  if (r.norm() < 1e-9)
-    throw std::invalid_argument("camera.up: must not be parallel to the viewing direction");
-  c.right = r.normalized();
+  c.forward = (p.target - p.eye).normalized();
+  c.right = c.forward.cross(p.up).normalized();
   c.up = c.right.cross(c.forward);
-  if (!(p.fov_deg > 0 && p.fov_deg < 180))
-    throw std::invalid_argument("camera.fov_deg: must be in (0, 180)");
-  if (p.width < 1 || p.height < 1 || p.width > 65536 || p.height > 65536)
-    throw std::invalid_argument("camera.width / camera.height: must be between 1 and 65536");
-  if (!(p.hysteresis >= 0) || !std::isfinite(p.hysteresis))
-    throw std::invalid_argument("camera.hysteresis: must be a finite number >= 0");
   c.width = p.width;
   c.height = p.height;
   c.focal_px = 0.5 * p.height / std::tan(0.5 * p.fov_deg * M_PI / 180);
@@ -68,9 +56,9 @@ Projector::Projector(const HeadGeometry& head, const CameraParams& camera,
   if (!(options_.light_dir.norm() > 1e-12) || !options_.light_dir.allFinite())
     throw std::invalid_argument("light.direction: must be a finite non-zero vector");
   options_.light_dir.normalize();
-  if (options_.body) validate(*options_.body);
+  if (options_.body) validate_part(*options_.body, "body");
   Bullet& b = *bullet_;
-  if (head.shape == "ellipsoid") {
+  if (head.shape == HeadKind::Ellipsoid) {
     const btVector3 centre(0, 0, 0);
     const btScalar radius = 1;
     auto outer = std::make_unique<btMultiSphereShape>(&centre, &radius, 1);

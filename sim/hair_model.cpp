@@ -14,28 +14,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-void check_hair(const HairParams& h) {
-  const auto fail = [](const std::string& field, const std::string& what) {
-    throw std::invalid_argument("hair." + field + ": " + what);
-  };
-  if (h.count < 1) fail("count", "must be at least 1, got " + std::to_string(h.count));
-  if (h.segments < 1 || h.segments > 1000)
-    fail("segments", "must be between 1 and 1000, got " + std::to_string(h.segments));
-  if (!(h.length > 0) || !std::isfinite(h.length)) fail("length", "must be a positive length");
-  if (!(h.length_variation >= 0 && h.length_variation < 1))
-    fail("length_variation", "must be in [0, 1)");
-  if (h.style != "straight" && h.style != "wavy" && h.style != "curly")
-    fail("style", "expected \"straight\", \"wavy\" or \"curly\", got \"" + h.style + "\"");
-  if (!(h.amplitude >= 0) || !std::isfinite(h.amplitude)) fail("amplitude", "must be >= 0");
-  if (!(h.frequency >= 0) || !std::isfinite(h.frequency)) fail("frequency", "must be >= 0");
-  if (!(h.comb >= 0) || !std::isfinite(h.comb)) fail("comb", "must be >= 0");
-  if (!(h.scalp_angle_deg > 0 && h.scalp_angle_deg <= 180))
-    fail("scalp_angle_deg", "must be in (0, 180]");
-  if (!(h.face_angle_deg >= 0 && h.face_angle_deg < 180))
-    fail("face_angle_deg", "must be in [0, 180)");
-  if (!std::isfinite(h.parting_deg)) fail("parting_deg", "not a finite number");
-}
-
 Vector3d random_direction(Rng& rng) {
   const double z = rng.uniform(-1, 1), phi = rng.uniform(0, 2 * M_PI);
   const double r = std::sqrt(std::max(0.0, 1 - z * z));
@@ -126,7 +104,7 @@ Polyline grow_strand(const HairParams& h, const HeadShape& head, const Vector3d&
     line.push_back(p);
   }
 
-  if (h.style != "straight" && h.amplitude > 0 && h.frequency > 0) {
+  if (h.style != HairCurl::Straight && h.amplitude > 0 && h.frequency > 0) {
     // Offsets in a parallel-transported frame (u starts sideways, across the lay of the hair),
     // faded in over the first 3 cm so roots sit on the scalp.
     Vector3d t0 = (line[1] - line[0]).normalized();
@@ -145,7 +123,7 @@ Polyline grow_strand(const HairParams& h, const HeadShape& head, const Vector3d&
       const double x = std::clamp(arc / 0.03, 0.0, 1.0);
       const double fade = x * x * (3 - 2 * x);
       const double phase = 2 * M_PI * h.frequency * arc;
-      Vector3d offset = h.style == "wavy"
+      Vector3d offset = h.style == HairCurl::Wavy
                             ? Vector3d(std::sin(phase) * u)
                             : Vector3d((std::cos(phase) - 1) * u + std::sin(phase) * v);
       out.push_back(line[i] + h.amplitude * fade * offset);
@@ -161,7 +139,7 @@ Polyline grow_strand(const HairParams& h, const HeadShape& head, const Vector3d&
 
 std::vector<Polyline> generate_hair(const HairParams& hair, const HeadShape& head,
                                     double clearance) {
-  check_hair(hair);
+  validate_part(hair, "hair");
   Rng rng(hair.seed);
   const std::vector<Vector3d> roots = scalp_roots(hair, head, rng);
   std::vector<Polyline> strands;

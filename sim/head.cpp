@@ -53,13 +53,13 @@ double Capsule::distance(const Vector3d& p, Vector3d* normal) const {
 }
 
 HeadShape::HeadShape(HeadGeometry geometry) : geometry_(std::move(geometry)) {
-  if (geometry_.shape == "ellipsoid") {
+  if (geometry_.shape == HeadKind::Ellipsoid) {
     const Vector3d& r = geometry_.radii;
     if (!(r.minCoeff() > 0) || !r.allFinite())
       throw std::invalid_argument("head.radii: every radius must be a positive number");
     center_ = Vector3d::Zero();
     half_extent_ = r;
-  } else if (geometry_.shape == "mesh") {
+  } else {
     mesh_ = true;
     const TriangleMesh& m = geometry_.mesh;
     if (m.vertices.empty() || m.triangles.empty())
@@ -88,9 +88,6 @@ HeadShape::HeadShape(HeadGeometry geometry) : geometry_(std::move(geometry)) {
     center_ = 0.5 * (lo + hi);
     half_extent_ = 0.5 * (hi - lo);
     build_mesh_grid();
-  } else {
-    throw std::invalid_argument("head.shape: expected \"ellipsoid\" or \"mesh\", got \"" +
-                                geometry_.shape + "\"");
   }
 }
 

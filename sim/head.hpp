@@ -7,8 +7,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <string>
 #include <vector>
+
+#include "sim/params.hpp"
 
 namespace wisp::sim {
 
@@ -18,9 +19,9 @@ struct TriangleMesh {
 };
 
 struct HeadGeometry {
-  std::string shape = "ellipsoid";  // "ellipsoid" or "mesh"
+  HeadKind shape = HeadKind::Ellipsoid;
   Eigen::Vector3d radii{0.078, 0.105, 0.095};
-  TriangleMesh mesh;  // shape "mesh" only, head-local metres
+  TriangleMesh mesh;  // shape Mesh only, head-local metres
 };
 
 // A rigid head pose: world = rotation * local + position.
@@ -66,7 +67,7 @@ class HeadShape {
 
  private:
   HeadGeometry geometry_;
-  bool mesh_ = false;  // geometry_.shape == "mesh", cached for the hot distance queries
+  bool mesh_ = false;  // geometry_.shape == HeadKind::Mesh, cached for the hot distance queries
   Eigen::Vector3d center_, half_extent_;
   // Mesh signed-distance grid: n.x() * n.y() * n.z() samples from `origin_` with spacing `cell_`.
   Eigen::Vector3i n_ = Eigen::Vector3i::Zero();

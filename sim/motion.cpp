@@ -16,35 +16,29 @@ struct Cycle {
   std::vector<Keyframe> keys;
 };
 
-Cycle preset_cycle(const std::string& name) {
+// The cycle of a generated preset (not None or Keys, which motion_keys handles itself).
+Cycle preset_cycle(MotionPreset preset) {
   const auto key = [](double t, Vector3d pos, Vector3d ypr) { return Keyframe{t, pos, ypr}; };
   const Vector3d o = Vector3d::Zero();
-  if (name == "turn")  // look right, back, left, back
-    return {4.0,
-            {key(0.0, o, o), key(0.9, o, {65, 0, 0}), key(1.5, o, {65, 0, 0}), key(2.4, o, o),
-             key(3.2, o, {-50, 5, 0})}};
-  if (name == "nod")
-    return {1.2, {key(0.0, o, o), key(0.45, o, {0, 28, 0}), key(0.9, o, {0, -8, 0})}};
-  if (name == "shake")  // a violent "no": +-40 degrees at about 2.8 Hz
-    return {0.36, {key(0.0, o, {-40, 0, 0}), key(0.18, o, {40, 0, 0})}};
-  if (name == "walk")  // bob twice per stride, sway once, a little yaw and roll
-    return {1.0,
-            {key(0.0, {0.02, 0, 0}, {4, 0, -3}), key(0.25, {0, -0.015, 0}, {0, 2, 0}),
-             key(0.5, {-0.02, 0, 0}, {-4, 0, 3}), key(0.75, {0, -0.015, 0}, {0, 2, 0})}};
-  throw std::invalid_argument("motion.preset: unknown preset \"" + name +
-                              "\" (expected none, turn, nod, shake, walk or keys)");
-}
-
-void check_keys(const std::vector<Keyframe>& keys) {
-  if (keys.empty()) throw std::invalid_argument("motion.keys: at least one keyframe is needed");
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const Keyframe& k = keys[i];
-    const std::string at = "motion.keys[" + std::to_string(i) + "]";
-    if (!std::isfinite(k.time) || !k.position.allFinite() || !k.ypr_deg.allFinite())
-      throw std::invalid_argument(at + ": not a finite number");
-    if (i > 0 && !(k.time > keys[i - 1].time))
-      throw std::invalid_argument(at + ".time: keyframe times must increase");
+  switch (preset) {
+    case MotionPreset::Turn:  // look right, back, left, back
+      return {4.0,
+              {key(0.0, o, o), key(0.9, o, {65, 0, 0}), key(1.5, o, {65, 0, 0}), key(2.4, o, o),
+               key(3.2, o, {-50, 5, 0})}};
+    case MotionPreset::Nod:
+      return {1.2, {key(0.0, o, o), key(0.45, o, {0, 28, 0}), key(0.9, o, {0, -8, 0})}};
+    case MotionPreset::Shake:  // a violent "no": +-40 degrees at about 2.8 Hz
+      return {0.36, {key(0.0, o, {-40, 0, 0}), key(0.18, o, {40, 0, 0})}};
+    case MotionPreset::Walk:  // bob twice per stride, sway once, a little yaw and roll
+      return {1.0,
+              {key(0.0, {0.02, 0, 0}, {4, 0, -3}), key(0.25, {0, -0.015, 0}, {0, 2, 0}),
+               key(0.5, {-0.02, 0, 0}, {-4, 0, 3}), key(0.75, {0, -0.015, 0}, {0, 2, 0})}};
+    case MotionPreset::None:
+    case MotionPreset::Keys:
+      break;
   }
+  throw std::logic_error(std::string("preset_cycle: \"") + choice_name(preset) +
+                         "\" is not a generated motion");
 }
 
 // Catmull-Rom tangents for non-uniform times; zero at both ends so the motion starts and ends at
@@ -67,20 +61,10 @@ Vector3d hermite(const Vector3d& p0, const Vector3d& m0, const Vector3d& p1, con
 }  // namespace
 
 std::vector<Keyframe> motion_keys(const MotionParams& motion) {
-  if (!std::isfinite(motion.duration) || motion.duration <= 0)
-    throw std::invalid_argument("motion.duration: must be a positive number of seconds");
-  if (motion.preset == "keys") {
-    check_keys(motion.keys);
-    return motion.keys;
-  }
-  if (!(motion.speed > 0) || !std::isfinite(motion.speed))
-    throw std::invalid_argument("motion.speed: must be a positive number");
-  if (!std::isfinite(motion.amplitude))
-    throw std::invalid_argument("motion.amplitude: not a finite number");
-  if (!(motion.settle >= 0) || !std::isfinite(motion.settle))
-    throw std::invalid_argument("motion.settle: must be a non-negative number of seconds");
+  validate_part(motion, "motion");
+  if (motion.preset == MotionPreset::Keys) return motion.keys;
   std::vector<Keyframe> keys{Keyframe{}};
-  if (motion.preset == "none") return keys;
+  if (motion.preset == MotionPreset::None) return keys;
   const Cycle cycle = preset_cycle(motion.preset);
   const double period = cycle.period / motion.speed;
   // Repeat whole cycles past the end, then close on the rest pose.
@@ -103,7 +87,7 @@ Eigen::Quaterniond rotation_from_ypr(const Vector3d& ypr_deg) {
 }
 
 HeadMotion::HeadMotion(std::vector<Keyframe> keys) : keys_(std::move(keys)) {
-  check_keys(keys_);
+  validate_part(keys_, "motion");
   dpos_ = tangents(keys_, [](const Keyframe& k) { return k.position; });
   dypr_ = tangents(keys_, [](const Keyframe& k) { return k.ypr_deg; });
 }

@@ -12,8 +12,7 @@
 namespace wisp::sim {
 
 // The keyframes of a motion: the preset expanded over motion.duration, or motion.keys.
-// Throws std::invalid_argument for an unknown preset, non-finite values or times that do not
-// increase.
+// Throws std::invalid_argument for bad parameters (validate(MotionParams), as "motion.speed: ...").
 std::vector<Keyframe> motion_keys(const MotionParams& motion);
 
 // Rotation of yaw (about y), pitch (about x) and roll (about z), in degrees: R = Ry Rx Rz.

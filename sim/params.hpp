@@ -1,6 +1,7 @@
 // The parameters of the physical half of a scene: head, hair model, head motion, simulator and
-// camera. Plain structs with documented defaults (docs/scene.md lists every field with its unit);
-// io/scene_json.cpp fills them from the scene JSON and validates them, sim/ consumes them.
+// camera. Plain structs with documented defaults (docs/scene.md lists every field with its unit)
+// and one validate() each; io/scene_json.cpp fills them from the scene JSON and validates them,
+// sim/ validates what it is given again and consumes it.
 //
 // Units: metres, seconds, kilograms; angles given by users are in degrees. Head-local frame: x to
 // the viewer's right when the head faces the camera, y up, z forward (out of the face). The
@@ -8,17 +9,28 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "sim/choices.hpp"
+
 namespace wisp::sim {
 
+// The head's surface: an analytic ellipsoid or a closed triangle mesh. The values are the head
+// codes of .wsim files (io/anim_file.hpp).
+enum class HeadKind : std::uint32_t { Ellipsoid = 0, Mesh = 1 };
+constexpr std::array<Choice<HeadKind>, 2> choices(HeadKind) {
+  return {{{"ellipsoid", HeadKind::Ellipsoid}, {"mesh", HeadKind::Mesh}}};
+}
+
 struct HeadParams {
-  std::string shape = "ellipsoid";             // "ellipsoid" or "mesh"
+  HeadKind shape = HeadKind::Ellipsoid;
   Eigen::Vector3d radii{0.078, 0.105, 0.095};  // ellipsoid semi-axes along x, y, z (m)
-  std::filesystem::path mesh;                  // OBJ file for shape "mesh" (absolute once loaded)
+  std::filesystem::path mesh;                  // OBJ file for shape Mesh (absolute once loaded)
   double mesh_scale = 1.0;                     // OBJ units to metres
   Eigen::Vector3d mesh_offset = Eigen::Vector3d::Zero();  // added after scaling (m)
   bool shoulders = false;  // strands also collide with the body: shoulder capsule, neck, chest
@@ -27,20 +39,34 @@ struct HeadParams {
   double shoulder_radius = 0.07;                       // capsule radius (m)
 };
 
+// Where guides come from: generated, or read from our JSON strand format or a Yuksel .hair file.
+enum class HairSource { Procedural, Json, Hair };
+constexpr std::array<Choice<HairSource>, 3> choices(HairSource) {
+  return {{{"procedural", HairSource::Procedural},
+           {"json", HairSource::Json},
+           {"hair", HairSource::Hair}}};
+}
+
+// The offsets of procedural strands: none, a planar wave or a helix.
+enum class HairCurl { Straight, Wavy, Curly };
+constexpr std::array<Choice<HairCurl>, 3> choices(HairCurl) {
+  return {{{"straight", HairCurl::Straight}, {"wavy", HairCurl::Wavy}, {"curly", HairCurl::Curly}}};
+}
+
 struct HairParams {
-  std::string source = "procedural";  // "procedural", "json" (our strand format) or "hair" (Yuksel)
-  std::filesystem::path file;         // strand file for sources "json" and "hair"
-  int count = 150;                    // guides (for files: guides selected from the file, 0 = all)
-  int segments = 24;                  // segments per guide (for files: 0 keeps the file's points)
-  double length = 0.30;               // mean strand length (m)
-  double length_variation = 0.15;     // relative, uniform in [-v, +v]
-  std::string style = "wavy";         // "straight", "wavy" or "curly"
-  double amplitude = 0.012;           // wave amplitude or curl radius (m)
-  double frequency = 8.0;             // waves or curl turns per metre of strand
-  double parting_deg = 0.0;           // azimuth of the parting line from the centre (+ = to +x)
-  double comb = 1.0;                  // how quickly strands turn from the scalp normal to gravity
-  double scalp_angle_deg = 105.0;     // roots lie within this angle of the crown (+y)
-  double face_angle_deg = 62.0;       // and farther than this angle from the face direction (+z)
+  HairSource source = HairSource::Procedural;
+  std::filesystem::path file;      // strand file for sources Json and Hair
+  int count = 150;                 // guides (for files: guides selected from the file, 0 = all)
+  int segments = 24;               // segments per guide (for files: 0 keeps the file's points)
+  double length = 0.30;            // mean strand length (m)
+  double length_variation = 0.15;  // relative, uniform in [-v, +v]
+  HairCurl style = HairCurl::Wavy;
+  double amplitude = 0.012;        // wave amplitude or curl radius (m)
+  double frequency = 8.0;          // waves or curl turns per metre of strand
+  double parting_deg = 0.0;        // azimuth of the parting line from the centre (+ = to +x)
+  double comb = 1.0;               // how quickly strands turn from the scalp normal to gravity
+  double scalp_angle_deg = 105.0;  // roots lie within this angle of the crown (+y)
+  double face_angle_deg = 62.0;    // and farther than this angle from the face direction (+z)
   std::uint64_t seed = 1;
   // For file sources: file coordinates to head-local metres.
   double file_scale = 1.0;
@@ -55,13 +81,24 @@ struct Keyframe {
   Eigen::Vector3d ypr_deg = Eigen::Vector3d::Zero();
 };
 
+// A generated head motion (sim/motion.cpp), none, or the user's keyframes (Keys).
+enum class MotionPreset { None, Turn, Nod, Shake, Walk, Keys };
+constexpr std::array<Choice<MotionPreset>, 6> choices(MotionPreset) {
+  return {{{"none", MotionPreset::None},
+           {"turn", MotionPreset::Turn},
+           {"nod", MotionPreset::Nod},
+           {"shake", MotionPreset::Shake},
+           {"walk", MotionPreset::Walk},
+           {"keys", MotionPreset::Keys}}};
+}
+
 struct MotionParams {
-  std::string preset = "turn";  // "none", "turn", "nod", "shake", "walk" or "keys"
-  double duration = 4.0;        // simulated seconds
-  double amplitude = 1.0;       // scales the preset's angles and offsets
-  double speed = 1.0;           // scales the preset's tempo
-  double settle = 0.5;          // seconds the head holds still before the motion starts
-  std::vector<Keyframe> keys;   // preset "keys": user keyframes, increasing times
+  MotionPreset preset = MotionPreset::Turn;
+  double duration = 4.0;       // simulated seconds
+  double amplitude = 1.0;      // scales the preset's angles and offsets
+  double speed = 1.0;          // scales the preset's tempo
+  double settle = 0.5;         // seconds the head holds still before the motion starts
+  std::vector<Keyframe> keys;  // preset Keys: user keyframes, increasing times
 };
 
 struct WindParams {
@@ -71,12 +108,21 @@ struct WindParams {
   std::uint64_t seed = 7;
 };
 
+// The strand solver (sim/solver.hpp): DFTL (the default), Featherstone chains (btMultiBody) or
+// Bullet soft-body ropes.
+enum class SimModel { Dftl, Featherstone, Rope };
+constexpr std::array<Choice<SimModel>, 3> choices(SimModel) {
+  return {{{"dftl", SimModel::Dftl},
+           {"featherstone", SimModel::Featherstone},
+           {"rope", SimModel::Rope}}};
+}
+
 struct SimParams {
-  std::string model = "dftl";  // "dftl" (default), "featherstone" (btMultiBody), "rope" (soft body)
-  double fps = 24.0;           // saved frames per second
-  double step_rate = 120.0;    // fixed physics steps per second
-  int substeps = 4;            // sub-steps per physics step
-  int iterations = 1;          // constraint iterations per sub-step (dftl, rope)
+  SimModel model = SimModel::Dftl;
+  double fps = 24.0;                         // saved frames per second
+  double step_rate = 120.0;                  // fixed physics steps per second
+  int substeps = 4;                          // sub-steps per physics step
+  int iterations = 1;                        // constraint iterations per sub-step (dftl, rope)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2, world
   double density = 0.004;                    // mass per metre of guide strand (kg/m)
   double bend_stiffness = 4e-5;              // bending rigidity towards the rest shape (N m^2)
@@ -105,5 +151,32 @@ struct CameraParams {
   int height = 800;
   double hysteresis = 0.004;  // occlusion hysteresis band (m): see sim/camera.hpp
 };
+
+// Each validate() throws std::invalid_argument("field: what") for the first field out of its
+// range, non-finite, or inconsistent with another ("count: must be at least 1, got 0"). Whoever
+// reads the struct from somewhere puts the place in front: io/ the file and the part
+// ("scene.json: hair.count: ..."), sim's entry points the part (validate_part).
+void validate(const HeadParams& head);
+void validate(const HairParams& hair);
+void validate(const std::vector<Keyframe>& keys);  // a motion's keys: "keys[2].time: ..."
+void validate(const MotionParams& motion);
+void validate(const WindParams& wind);
+void validate(const SimParams& sim);
+void validate(const CameraParams& camera);
+
+// The building block of every validate(): throws std::invalid_argument("field: what") unless ok.
+inline void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+// validate(params), with `part` before the field in the message: "hair.count: ...".
+template <class Params>
+void validate_part(const Params& params, const std::string& part) {
+  try {
+    validate(params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(part + "." + e.what());
+  }
+}
 
 }  // namespace wisp::sim

@@ -20,7 +20,7 @@ Environment::Environment(const SimSetup& setup)
       shoulders_(setup.shoulders),
       body_(setup.body),
       params_(setup.sim) {
-  if (body_) validate(*body_);
+  if (body_) validate_part(*body_, "body");
   // Three incommensurate sines per gust signal, with seeded phases: smooth, never periodic
   // within a shot, identical for a given seed.
   Rng rng(params_.wind.seed);
@@ -77,41 +77,10 @@ bool Environment::push_out(Vector3d& x, const HeadPose& pose, double margin) con
   return moved;
 }
 
-void check_sim_params(const SimParams& s) {
-  const auto fail = [](const std::string& field, const std::string& what) {
-    throw std::invalid_argument("sim." + field + ": " + what);
-  };
-  const auto positive = [&](double v, const char* field) {
-    if (!(v > 0) || !std::isfinite(v)) fail(field, "must be a positive number");
-  };
-  const auto non_negative = [&](double v, const char* field) {
-    if (!(v >= 0) || !std::isfinite(v)) fail(field, "must be a finite number >= 0");
-  };
-  if (s.model != "dftl" && s.model != "featherstone" && s.model != "rope")
-    fail("model", "expected \"dftl\", \"featherstone\" or \"rope\", got \"" + s.model + "\"");
-  positive(s.fps, "fps");
-  positive(s.step_rate, "step_rate");
-  if (s.step_rate < s.fps) fail("step_rate", "must be at least sim.fps");
-  if (s.substeps < 1 || s.substeps > 1000) fail("substeps", "must be between 1 and 1000");
-  if (s.iterations < 1 || s.iterations > 1000) fail("iterations", "must be between 1 and 1000");
-  if (!s.gravity.allFinite()) fail("gravity", "not a finite vector");
-  positive(s.density, "density");
-  non_negative(s.bend_stiffness, "bend_stiffness");
-  non_negative(s.root_stiffness, "root_stiffness");
-  non_negative(s.damping, "damping");
-  non_negative(s.air_drag, "air_drag");
-  non_negative(s.collision_margin, "collision_margin");
-  positive(s.max_speed, "max_speed");
-  non_negative(s.preroll, "preroll");
-  if (s.preroll > 600) fail("preroll", "must be at most 600 seconds");
-  if (!s.wind.velocity.allFinite()) fail("wind.velocity", "not a finite vector");
-  non_negative(s.wind.gust, "wind.gust");
-  non_negative(s.wind.gust_frequency, "wind.gust_frequency");
-}
-
 SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, const SimParams& sim,
                          const TriangleMesh& mesh) {
-  check_sim_params(sim);
+  validate_part(head, "head");
+  validate_part(sim, "sim");
   SimSetup setup;
   setup.head.shape = head.shape;
   setup.head.radii = head.radii;
@@ -146,7 +115,7 @@ double max_stretch(const StrandFrame& frame, const std::vector<Polyline>& rest) 
 }
 
 Animation simulate(const SimSetup& setup, const SimProgress& progress) {
-  check_sim_params(setup.sim);
+  validate_part(setup.sim, "sim");
   if (!(setup.duration > 0) || !std::isfinite(setup.duration))
     throw std::invalid_argument("motion.duration: must be a positive number of seconds");
   if (setup.rest.empty()) throw std::invalid_argument("hair: the hair model has no strands");
@@ -165,10 +134,10 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   }
   const Environment env(setup);
   const SimParams& sp = setup.sim;
-  std::unique_ptr<StrandSolver> solver = sp.model == "featherstone"
-                                             ? make_featherstone_solver(env, setup.rest)
-                                         : sp.model == "rope" ? make_rope_solver(env, setup.rest)
-                                                              : make_dftl_solver(env, setup.rest);
+  std::unique_ptr<StrandSolver> solver =
+      sp.model == SimModel::Featherstone ? make_featherstone_solver(env, setup.rest)
+      : sp.model == SimModel::Rope       ? make_rope_solver(env, setup.rest)
+                                         : make_dftl_solver(env, setup.rest);
   const double dt = 1.0 / sp.step_rate;
   const int frames = static_cast<int>(std::floor(setup.duration * sp.fps + 1e-9)) + 1;
   Animation anim;

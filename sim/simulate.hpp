@@ -26,7 +26,8 @@ struct SimSetup {
   SimParams sim;
 };
 
-// Everything but the guides: head (with `mesh` for shape "mesh"), shoulders, motion, parameters.
+// Everything but the guides: head (with `mesh` for shape Mesh), shoulders, motion, parameters.
+// Throws std::invalid_argument naming the part and field ("sim.fps: ...") for bad parameters.
 SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, const SimParams& sim,
                          const TriangleMesh& mesh = {});
 
@@ -36,14 +37,11 @@ SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, con
 SimSetup make_setup(const HeadParams& head, const HairParams& hair, const MotionParams& motion,
                     const SimParams& sim, const TriangleMesh& mesh = {});
 
-// Checks sim parameters; throws std::invalid_argument naming the field.
-void check_sim_params(const SimParams& sim);
-
 // Called after each frame with (frames done, total frames).
 using SimProgress = std::function<void(int done, int total)>;
 
-// Throws std::invalid_argument for bad parameters and std::runtime_error when the integrator
-// blows up ("simulation blew up at frame F ...").
+// Throws std::invalid_argument for bad parameters (validate(SimParams), as "sim.step_rate: ...")
+// and std::runtime_error when the integrator blows up ("simulation blew up at frame F ...").
 Animation simulate(const SimSetup& setup, const SimProgress& progress = {});
 
 // Largest |segment length / rest length - 1| of any strand in `frame`, against `rest`.

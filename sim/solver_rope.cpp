@@ -46,7 +46,7 @@ class RopeSolver final : public StrandSolver {
 
     // The head: a kinematic rigid body.
     const HeadGeometry& g = env.head().geometry();
-    if (g.shape == "ellipsoid") {
+    if (g.shape == HeadKind::Ellipsoid) {
       const btVector3 centre(0, 0, 0);
       const btScalar radius = 1;
       auto sphere = std::make_unique<btMultiSphereShape>(&centre, &radius, 1);

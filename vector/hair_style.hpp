@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 
 #include "vector/hair_shading.hpp"
@@ -24,6 +25,9 @@
 namespace wisp::vector {
 
 enum class ShadingModel { Faraj, Lit };
+constexpr std::array<sim::Choice<ShadingModel>, 2> choices(ShadingModel) {
+  return {{{"faraj", ShadingModel::Faraj}, {"lit", ShadingModel::Lit}}};
+}
 
 struct ShadingStyle {
   ShadingModel model = ShadingModel::Faraj;
@@ -43,6 +47,11 @@ struct ShadingStyle {
 };
 
 enum class HighlightShape { None, Band, Anime };
+constexpr std::array<sim::Choice<HighlightShape>, 3> choices(HighlightShape) {
+  return {{{"none", HighlightShape::None},
+           {"band", HighlightShape::Band},
+           {"anime", HighlightShape::Anime}}};
+}
 
 // Stylised highlights as closed diffusion curves: the highlight colour inside, an insulating
 // (Neumann) side outside, so the wisp's shading around them is undisturbed.
@@ -101,5 +110,14 @@ struct HairStyle {
   HighlightStyle specular;
   InkStyle ink;
 };
+
+// Each throws std::invalid_argument("field: what") for the first field out of its range, the
+// field named as in the scene's `style` part (docs/style.md): "ink.tip_fade: must be in [0, 1]
+// ...". io/ puts the file and "style." in front. The HairStyle checks the wisp geometry a style
+// sets (width, curvature_clamp) and its three parts; build_wisps checks the whole WispStyle.
+void validate(const ShadingStyle& shading);  // with its Lighting, whose fields sit beside its own
+void validate(const HighlightStyle& highlights);
+void validate(const InkStyle& ink);
+void validate(const HairStyle& style);
 
 }  // namespace wisp::vector

@@ -217,8 +217,8 @@ FittedPath fit_cubics(const std::vector<Vector2d>& input, const FitOptions& opti
 
   const int m = int(p.size());
   auto corner_at = [&](int i) {
-    const Vector2d in = p[i] - p[(i + m - 1) % m], out = p[(i + 1) % m] - p[i];
-    return turning_deg(in, out) > options.corner_deg;
+    const Vector2d before = p[i] - p[(i + m - 1) % m], after = p[(i + 1) % m] - p[i];
+    return turning_deg(before, after) > options.corner_deg;
   };
   // A loop starts at its sharpest corner (or at point 0) and ends there again.
   int start = 0;

@@ -10,12 +10,21 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
+
+#include "sim/choices.hpp"
 
 namespace wisp::vector {
 
 enum class RampMetric { None, Depth, BackLight, Specular };
+constexpr std::array<sim::Choice<RampMetric>, 4> choices(RampMetric) {
+  return {{{"none", RampMetric::None},
+           {"depth", RampMetric::Depth},
+           {"back_light", RampMetric::BackLight},
+           {"specular", RampMetric::Specular}}};
+}
 
 struct ToonRamp {
   int width = 0, height = 0;

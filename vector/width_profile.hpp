@@ -4,8 +4,11 @@
 // starts at half width, swells past the middle and closes at the tip.
 #pragma once
 
+#include <array>
 #include <utility>
 #include <vector>
+
+#include "sim/choices.hpp"
 
 namespace wisp::vector {
 
@@ -28,5 +31,11 @@ struct WidthProfile {
 // Throws std::invalid_argument when the controls are empty (Linear), unsorted, outside [0,1] in
 // u, negative or not finite.
 void validate(const WidthProfile& profile);
+
+// A style names its profile by shape: "taper" is Faraj's taper (the Linear shape with
+// taper_controls()), "sine" is Shin's.
+constexpr std::array<sim::Choice<WidthProfile::Shape>, 2> choices(WidthProfile::Shape) {
+  return {{{"taper", WidthProfile::Shape::Linear}, {"sine", WidthProfile::Shape::Shin}}};
+}
 
 }  // namespace wisp::vector

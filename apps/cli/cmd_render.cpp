@@ -22,6 +22,7 @@
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene.hpp"
+#include "sim/choices.hpp"
 
 namespace wisp::cli {
 namespace {
@@ -31,7 +32,8 @@ using diffusion::Clock;
 using diffusion::ms_since;
 
 struct RenderArgs {
-  std::string scene, outdir, frames, size, anim, svg_style = "embedded";
+  std::string scene, outdir, frames, size, anim;
+  std::string svg_style = sim::choice_name(render::SvgStyle::Embedded);
   int threads = 0;
   bool force = false, quiet = false, masks = false;
 };
@@ -45,12 +47,6 @@ std::pair<int, int> parse_frames(const std::string& text) {
   const int first = std::stoi(m[1]), last = std::stoi(m[2]);
   if (last <= first) throw std::invalid_argument("--frames " + text + ": B must be greater than A");
   return {first, last};
-}
-
-render::SvgStyle parse_svg_style(const std::string& text) {
-  if (text == "embedded") return render::SvgStyle::Embedded;
-  if (text == "flat") return render::SvgStyle::Flat;
-  throw std::invalid_argument("--svg-style: expected 'embedded' or 'flat', got '" + text + "'");
 }
 
 // The frames asked for, checked against the animation's length.
@@ -110,7 +106,8 @@ void run_render(const RenderArgs& a) {
   const std::pair<int, int> asked = parse_frames(a.frames);
   const std::pair<int, int> size =
       a.size.empty() ? std::pair<int, int>{0, 0} : render::parse_size("--size", a.size);
-  const render::SvgStyle svg_style = parse_svg_style(a.svg_style);
+  // CLI11 checked the name against the table (IsMember).
+  const render::SvgStyle svg_style = *sim::parse_choice<render::SvgStyle>(a.svg_style);
   io::Scene scene = io::load_scene(a.scene);
   const fs::path out(a.outdir);
   render::prepare_frame_folder(out, asked.first, asked.second);
@@ -156,7 +153,8 @@ void add_render_command(CLI::App& app) {
                   "Render this saved animation (.wsim) instead of simulating");
   cmd->add_option("--svg-style", args->svg_style,
                   "embedded: shading as an image clipped by the silhouette; flat: a gradient "
-                  "path per visible wisp region");
+                  "path per visible wisp region")
+      ->check(CLI::IsMember(sim::choice_names<render::SvgStyle>()));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 256));
   cmd->add_flag("--force", args->force, "Render frames that already exist again");

@@ -23,12 +23,12 @@ void add_simulate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("simulate", "Simulate a scene's hair and save the animation");
   cmd->add_option("scene", opt->scene, "scene JSON (docs/scene.md)")->required();
   cmd->add_option("-o,--output", opt->output, "animation file to write (.wsim)")->required();
-  cmd->add_option("--model", opt->model, "override sim.model: dftl, featherstone or rope")
-      ->check(CLI::IsMember({"dftl", "featherstone", "rope"}));
+  cmd->add_option("--model", opt->model, "override sim.model")
+      ->check(CLI::IsMember(sim::choice_names<sim::SimModel>()));
   cmd->add_flag("-q,--quiet", opt->quiet, "no progress bar or summary");
   cmd->callback([opt]() {
     io::Scene scene = io::load_scene(opt->scene);
-    if (!opt->model.empty()) scene.sim.model = opt->model;
+    if (!opt->model.empty()) scene.sim.model = *sim::parse_choice<sim::SimModel>(opt->model);
     const sim::SimSetup setup = render::load_sim_setup(scene);
     const auto start = diffusion::Clock::now();
     std::unique_ptr<render::ProgressBar> bar;
@@ -49,8 +49,8 @@ void add_simulate_command(CLI::App& app) {
           "%s: %zu frames, %zu guides x %zu samples, model %s, %.2f s per simulated "
           "second, max stretch %.2g\n",
           opt->output.c_str(), anim.frames.size(), setup.rest.size(),
-          setup.rest.empty() ? std::size_t{0} : setup.rest[0].size(), setup.sim.model.c_str(),
-          seconds / setup.duration, stretch);
+          setup.rest.empty() ? std::size_t{0} : setup.rest[0].size(),
+          sim::choice_name(setup.sim.model), seconds / setup.duration, stretch);
     }
   });
 }

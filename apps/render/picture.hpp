@@ -13,6 +13,7 @@
 
 #include "diffusion/bezier.hpp"
 #include "diffusion/render.hpp"
+#include "sim/choices.hpp"
 #include "vector/arrangement.hpp"
 
 namespace wisp::render {
@@ -83,7 +84,12 @@ void write_frame_png(const FramePicture& picture, const std::filesystem::path& p
 void write_mask_png(const vector::HairMask& mask, int width, int height,
                     const std::filesystem::path& path);
 
+// Embedded: the shading as an image clipped by the silhouette; Flat: a gradient path per
+// visible wisp region.
 enum class SvgStyle { Embedded, Flat };
+constexpr std::array<sim::Choice<SvgStyle>, 2> choices(SvgStyle) {
+  return {{{"embedded", SvgStyle::Embedded}, {"flat", SvgStyle::Flat}}};
+}
 void write_frame_svg(const FramePicture& picture, const std::filesystem::path& path,
                      SvgStyle style);
 std::string format_frame_svg(const FramePicture& picture, SvgStyle style);

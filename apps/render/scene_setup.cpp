@@ -16,7 +16,7 @@ namespace wisp::render {
 sim::SimSetup load_sim_setup(const io::Scene& scene) {
   const std::string file = scene.path.string();
   sim::TriangleMesh mesh;
-  if (scene.head.shape == "mesh") {
+  if (scene.head.shape == sim::HeadKind::Mesh) {
     try {
       mesh = io::read_obj(scene.head.mesh);
     } catch (const std::exception& e) {
@@ -25,14 +25,15 @@ sim::SimSetup load_sim_setup(const io::Scene& scene) {
     for (auto& v : mesh.vertices) v = v * scene.head.mesh_scale + scene.head.mesh_offset;
   }
   try {
-    if (scene.hair.source == "procedural")
+    if (scene.hair.source == sim::HairSource::Procedural)
       return sim::make_setup(scene.head, scene.hair, scene.motion, scene.sim, mesh);
 
     sim::SimSetup setup = sim::make_base_setup(scene.head, scene.motion, scene.sim, mesh);
     std::vector<sim::Polyline> strands;
     try {
-      strands = scene.hair.source == "json" ? io::read_strands_json(scene.hair.file)
-                                            : io::read_hair_file(scene.hair.file).strands;
+      strands = scene.hair.source == sim::HairSource::Json
+                    ? io::read_strands_json(scene.hair.file)
+                    : io::read_hair_file(scene.hair.file).strands;
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("hair.file: ") + e.what());
     }

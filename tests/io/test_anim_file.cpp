@@ -33,7 +33,7 @@ sim::SimSetup small_setup() {
   hair.count = 12;
   hair.segments = 10;
   sim::MotionParams motion;
-  motion.preset = "nod";
+  motion.preset = sim::MotionPreset::Nod;
   motion.duration = 1.0;
   sim::SimParams params;
   params.wind.velocity = Vector3d(0.3, 0, 0);
@@ -46,13 +46,13 @@ sim::SimSetup small_setup() {
 TEST_CASE("a saved animation reads back bit for bit", "[io][anim]") {
   const auto path = temp_dir() / "a.wsim";
   sim::Animation anim = sim::simulate(small_setup());
-  anim.head.shape = "mesh";  // exercise the mesh section too
+  anim.head.shape = sim::HeadKind::Mesh;  // exercise the mesh section too
   anim.head.mesh.vertices = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
   anim.head.mesh.triangles = {Eigen::Vector3i(0, 1, 2)};
   io::write_animation(path, anim);
   const sim::Animation back = io::read_animation(path);
   CHECK(back.fps == anim.fps);
-  CHECK(back.head.shape == "mesh");
+  CHECK(back.head.shape == sim::HeadKind::Mesh);
   CHECK(back.head.mesh.vertices == anim.head.mesh.vertices);
   CHECK(back.head.mesh.triangles == anim.head.mesh.triangles);
   REQUIRE(back.frames.size() == anim.frames.size());

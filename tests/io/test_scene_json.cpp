@@ -3,8 +3,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 
 #include "apps/render/scene_setup.hpp"
 #include "io/scene.hpp"
@@ -23,16 +25,40 @@ std::string error_of(const json& doc) {
   return "";
 }
 
+// The choice field at `pointer` ("/sim/model") reads every value of E (listed by the caller) by
+// its name, next to the fields in `with` that some values need; a misspelt name is one line
+// listing the names, with the nearest one.
+template <class E, class Get>
+void check_choice_field(const std::string& pointer, Get get, std::initializer_list<E> all,
+                        const json& with = json::object()) {
+  const json::json_pointer at(pointer);
+  for (const E value : all) {
+    json doc = with;
+    doc[at] = wisp::sim::choice_name(value);
+    INFO(doc.dump());
+    CHECK(get(parse_scene(doc, "scene.json")) == value);
+  }
+  const std::vector<std::string> names = wisp::sim::choice_names<E>();
+  CHECK(names.size() == all.size());
+  std::string list, field = pointer.substr(1);
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  std::replace(field.begin(), field.end(), '/', '.');
+  json doc;
+  doc[at] = names[0] + "s";
+  CHECK(error_of(doc) == "scene.json: " + field + ": expected one of " + list + ", got \"" +
+                             names[0] + "s\" (did you mean \"" + names[0] + "\"?)");
+}
+
 }  // namespace
 
 TEST_CASE("an empty scene takes every default", "[io][scene]") {
   const wisp::io::Scene s = parse_scene(json::object(), "dir/scene.json");
   CHECK(s.hair.count == 150);
   CHECK(s.hair.segments == 24);
-  CHECK(s.sim.model == "dftl");
-  CHECK(s.motion.preset == "turn");
+  CHECK(s.sim.model == wisp::sim::SimModel::Dftl);
+  CHECK(s.motion.preset == wisp::sim::MotionPreset::Turn);
   CHECK(s.camera.width == 800);
-  CHECK(s.head.shape == "ellipsoid");
+  CHECK(s.head.shape == wisp::sim::HeadKind::Ellipsoid);
 }
 
 TEST_CASE("every part of a scene is read", "[io][scene]") {
@@ -49,11 +75,11 @@ TEST_CASE("every part of a scene is read", "[io][scene]") {
   CHECK(s.head.mesh_scale == 0.01);
   CHECK(s.head.shoulders);
   CHECK(s.hair.count == 12);
-  CHECK(s.hair.style == "curly");
+  CHECK(s.hair.style == wisp::sim::HairCurl::Curly);
   CHECK(s.hair.seed == 5);
   REQUIRE(s.motion.keys.size() == 2);
   CHECK(s.motion.keys[1].ypr_deg.x() == 30);
-  CHECK(s.sim.model == "rope");
+  CHECK(s.sim.model == wisp::sim::SimModel::Rope);
   CHECK(s.sim.wind.velocity.x() == 1);
   CHECK(s.camera.height == 240);
 }
@@ -68,6 +94,65 @@ TEST_CASE("unknown fields are errors naming the field, with near-miss suggestion
   CHECK(error_of({{"hair", {{"zzzzzz", 1}}}}) == "scene.json: hair.zzzzzz: unknown field");
   CHECK(error_of({{"sim", {{"model", "ropes"}}}}).find("did you mean \"rope\"") !=
         std::string::npos);
+}
+
+TEST_CASE("every choice reads by its name; a misspelt one lists the names", "[io][scene]") {
+  using namespace wisp::sim;
+  using wisp::io::Scene;
+  namespace v = wisp::vector;
+  check_choice_field("/head/shape", [](const Scene& s) { return s.head.shape; },
+                     {HeadKind::Ellipsoid, HeadKind::Mesh}, {{"head", {{"mesh", "head.obj"}}}});
+  check_choice_field("/hair/source", [](const Scene& s) { return s.hair.source; },
+                     {HairSource::Procedural, HairSource::Json, HairSource::Hair},
+                     {{"hair", {{"file", "strands"}}}});
+  check_choice_field("/hair/style", [](const Scene& s) { return s.hair.style; },
+                     {HairCurl::Straight, HairCurl::Wavy, HairCurl::Curly});
+  check_choice_field("/motion/preset", [](const Scene& s) { return s.motion.preset; },
+                     {MotionPreset::None, MotionPreset::Turn, MotionPreset::Nod,
+                      MotionPreset::Shake, MotionPreset::Walk, MotionPreset::Keys},
+                     {{"motion", {{"keys", {{{"time", 0}}}}}}});
+  check_choice_field("/sim/model", [](const Scene& s) { return s.sim.model; },
+                     {SimModel::Dftl, SimModel::Featherstone, SimModel::Rope});
+  check_choice_field("/style/profile",
+                     [](const Scene& s) { return s.style.geometry.profile.shape; },
+                     {v::WidthProfile::Shape::Linear, v::WidthProfile::Shape::Shin});
+  check_choice_field("/style/shading/model", [](const Scene& s) { return s.style.shading.model; },
+                     {v::ShadingModel::Faraj, v::ShadingModel::Lit});
+  check_choice_field("/style/shading/ramp_metric",
+                     [](const Scene& s) { return s.style.shading.metric; },
+                     {v::RampMetric::None, v::RampMetric::Depth, v::RampMetric::BackLight,
+                      v::RampMetric::Specular});
+  check_choice_field("/style/highlights/shape",
+                     [](const Scene& s) { return s.style.specular.shape; },
+                     {v::HighlightShape::None, v::HighlightShape::Band, v::HighlightShape::Anime});
+  CHECK(error_of({{"style", {{"highlight_side", "up"}}}}) ==
+        "scene.json: style.highlight_side: expected one of left, right, got \"up\"");
+  CHECK(error_of({{"sim", {{"model", 2}}}}) == "scene.json: sim.model: expected a string, got 2");
+}
+
+TEST_CASE("range errors are the stage's validate() messages behind the file and the part",
+          "[io][scene]") {
+  CHECK(error_of({{"sim", {{"fps", 0}}}}) == "scene.json: sim.fps: must be in (0, 1000]");
+  CHECK(error_of({{"sim", {{"wind", {{"gust_frequency", -1}}}}}}) ==
+        "scene.json: sim.wind.gust_frequency: must be >= 0 (Hz)");
+  CHECK(error_of({{"hair", {{"source", "json"}, {"file", "s.json"}, {"count", -1}}}}) ==
+        "scene.json: hair.count: must be >= 0 (0 = all strands), got -1");
+  CHECK(error_of({{"head", {{"radii", {0.1, 0, 0.1}}}}}) ==
+        "scene.json: head.radii: every radius must be positive");
+  CHECK(error_of({{"motion", {{"preset", "keys"}}}}) ==
+        "scene.json: motion.keys: preset \"keys\" needs at least one keyframe");
+  CHECK(error_of({{"camera", {{"target", {0, 0, 1.1}}}}}) ==
+        "scene.json: camera.target: must differ from camera.eye");
+  CHECK(error_of({{"render", {{"warm_start_block", 0}}}}) ==
+        "scene.json: render.warm_start_block: must be in [1, 100000] frames");
+  CHECK(error_of({{"style", {{"highlights", {{"teeth", 17}}}}}}) ==
+        "scene.json: style.highlights.teeth: must be in [1, 16]");
+  CHECK(
+      error_of({{"style",
+                 {{"shading",
+                   {{"model", "lit"}, {"ambient", 0}, {"kajiya_diffuse", 0}, {"lambert", 0}}}}}}) ==
+      "scene.json: style.shading: lit shading needs a positive ambient, kajiya_diffuse or "
+      "lambert weight");
 }
 
 TEST_CASE("bad values are errors naming the field", "[io][scene]") {

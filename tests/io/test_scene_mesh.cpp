@@ -51,7 +51,7 @@ TEST_CASE("OBJ faces are fanned into triangles with resolved indices", "[io][obj
   CHECK(m.triangles[11] == Eigen::Vector3i(1, 6, 5));  // -3 is the 6th vertex
   // Closed, so it is a valid head: the centre is inside, a corner-ward point outside.
   wisp::sim::HeadGeometry g;
-  g.shape = "mesh";
+  g.shape = wisp::sim::HeadKind::Mesh;
   g.mesh = m;
   const wisp::sim::HeadShape head(g);
   CHECK(head.distance(Eigen::Vector3d::Zero()) == Approx(-0.1).margin(0.01));

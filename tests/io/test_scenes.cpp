@@ -84,7 +84,7 @@ TEST_CASE("every shipped scene simulates, and its hair sits on the head inside t
 TEST_CASE("long-wind's gusts visibly move the hair", "[io][scenes]") {
   wisp::io::Scene scene = wisp::io::load_scene(scene_file("long-wind.json"));
   REQUIRE(scene.sim.wind.gust > 0);
-  scene.motion.preset = "none";  // only the wind moves the hair
+  scene.motion.preset = wisp::sim::MotionPreset::None;  // only the wind moves the hair
   scene.motion.duration = 2.0;
   // Spread over time of the mean tip position along the wind.
   const auto tip_spread = [&](double gust) {

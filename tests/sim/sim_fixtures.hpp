@@ -28,8 +28,8 @@ inline SimSetup single_strand(double length, int segments, double angle_deg, dou
 }
 
 // `count` procedural guides with the given style on a head doing `preset`.
-inline SimSetup small_head(int count, int segments, const std::string& style,
-                           const std::string& preset, double duration) {
+inline SimSetup small_head(int count, int segments, HairCurl style, MotionPreset preset,
+                           double duration) {
   HeadParams head;
   HairParams hair;
   hair.count = count;

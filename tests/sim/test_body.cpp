@@ -287,7 +287,7 @@ TEST_CASE("bad body parameters are rejected naming the field", "[sim][body]") {
   CHECK_THROWS_WITH(BodyModel(HeadGeometry{}, b), Catch::Contains("body.slices"));
   b = BodyParams{};
   b.chest_radii.y() = std::nan("");
-  CHECK_THROWS_WITH(validate(b), Catch::Contains("body.chest_radii"));
+  CHECK_THROWS_WITH(validate(b), Catch::StartsWith("chest_radii: "));
 }
 
 TEST_CASE("the drawn neck and torso hide strands behind them; frames carry the light",
@@ -325,7 +325,7 @@ TEST_CASE("the drawn neck and torso hide strands behind them; frames carry the l
 }
 
 TEST_CASE("a pre-roll settles the hair before frame 0", "[sim][physics]") {
-  SimSetup setup = test::small_head(8, 12, "wavy", "none", 1.0);
+  SimSetup setup = test::small_head(8, 12, HairCurl::Wavy, MotionPreset::None, 1.0);
   const Animation plain = simulate(setup);
   setup.sim.preroll = 0.5;
   setup.duration = 0.5;
@@ -377,7 +377,7 @@ TEST_CASE("with shoulders on, strands stay out of the neck and chest as drawn", 
   hair.segments = 16;
   hair.length = 0.45;
   MotionParams motion;
-  motion.preset = "shake";
+  motion.preset = MotionPreset::Shake;
   motion.duration = 1.5;
   const SimSetup setup = make_setup(head, hair, motion, SimParams{});
   REQUIRE(setup.body);

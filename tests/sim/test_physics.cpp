@@ -55,7 +55,7 @@ double strand_energy(const Animation& a, int f, double density, double g) {
 }  // namespace
 
 TEST_CASE("strands stay inextensible over 5 s of violent shake", "[sim][physics]") {
-  SimSetup setup = test::small_head(60, 24, "wavy", "shake", 5.0);
+  SimSetup setup = test::small_head(60, 24, HairCurl::Wavy, MotionPreset::Shake, 5.0);
   const Animation anim = simulate(setup);
   double worst = 0;
   for (const StrandFrame& f : anim.frames) worst = std::max(worst, max_stretch(f, setup.rest));
@@ -70,8 +70,8 @@ TEST_CASE("strands stay inextensible over 5 s of violent shake", "[sim][physics]
 }
 
 TEST_CASE("featherstone chains are inextensible too", "[sim][physics]") {
-  SimSetup setup = test::small_head(10, 16, "wavy", "shake", 2.0);
-  setup.sim.model = "featherstone";
+  SimSetup setup = test::small_head(10, 16, HairCurl::Wavy, MotionPreset::Shake, 2.0);
+  setup.sim.model = SimModel::Featherstone;
   setup.sim.substeps = 80;  // explicit joint springs need small steps: see docs/sim.md
   const Animation anim = simulate(setup);
   double worst = 0;
@@ -81,7 +81,7 @@ TEST_CASE("featherstone chains are inextensible too", "[sim][physics]") {
 }
 
 TEST_CASE("curly hair holds its rest shape with gravity off and no motion", "[sim][physics]") {
-  SimSetup setup = test::small_head(40, 24, "curly", "none", 5.0);
+  SimSetup setup = test::small_head(40, 24, HairCurl::Curly, MotionPreset::None, 5.0);
   setup.sim.gravity.setZero();
   const Animation anim = simulate(setup);
   StrandFrame rest = anim.frames.front();
@@ -98,12 +98,12 @@ TEST_CASE("stiff curls keep their curl under gravity", "[sim][physics]") {
   HairParams hair;
   hair.count = 30;
   hair.segments = 40;
-  hair.style = "curly";
+  hair.style = HairCurl::Curly;
   hair.frequency = 20;  // turns per metre: 6 turns on 0.3 m
   hair.amplitude = 0.01;
   hair.length_variation = 0;
   MotionParams motion;
-  motion.preset = "none";
+  motion.preset = MotionPreset::None;
   motion.duration = 3.0;
   SimParams sim;
   sim.bend_stiffness = 2e-3;
@@ -175,10 +175,11 @@ TEST_CASE("with drag, a swinging strand's energy decays monotonically", "[sim][p
 }
 
 TEST_CASE("no strand sample ends inside the head by more than the margin", "[sim][physics]") {
-  for (const char* model : {"dftl", "featherstone"}) {
-    const bool featherstone = model == std::string("featherstone");
-    SimSetup setup =
-        test::small_head(featherstone ? 10 : 100, featherstone ? 16 : 24, "wavy", "shake", 2.0);
+  for (const SimModel model : {SimModel::Dftl, SimModel::Featherstone}) {
+    INFO(choice_name(model));
+    const bool featherstone = model == SimModel::Featherstone;
+    SimSetup setup = test::small_head(featherstone ? 10 : 100, featherstone ? 16 : 24,
+                                      HairCurl::Wavy, MotionPreset::Shake, 2.0);
     setup.sim.model = model;
     if (featherstone) setup.sim.substeps = 80;
     const Animation anim = simulate(setup);
@@ -188,15 +189,15 @@ TEST_CASE("no strand sample ends inside the head by more than the margin", "[sim
       for (const Polyline& s : f.strands)
         for (std::size_t i = 1; i < s.size(); ++i)
           deepest = std::min(deepest, head.distance(f.head.to_local(s[i])));
-    std::printf("[measured] %s: smallest signed distance to the head %.3g m (margin %.3g)\n", model,
-                deepest, setup.sim.collision_margin);
+    std::printf("[measured] %s: smallest signed distance to the head %.3g m (margin %.3g)\n",
+                choice_name(model), deepest, setup.sim.collision_margin);
     CHECK(deepest >= -setup.sim.collision_margin);
     if (!featherstone) CHECK(deepest >= 0);  // dftl: not even inside the surface
   }
 }
 
 TEST_CASE("two runs of the same scene give identical animations", "[sim][physics]") {
-  SimSetup setup = test::small_head(20, 12, "wavy", "walk", 1.0);
+  SimSetup setup = test::small_head(20, 12, HairCurl::Wavy, MotionPreset::Walk, 1.0);
   setup.sim.wind.velocity = Vector3d(0.5, 0, 0);
   setup.sim.wind.gust = 1.0;
   const Animation a = simulate(setup), b = simulate(setup);
@@ -210,8 +211,8 @@ TEST_CASE("two runs of the same scene give identical animations", "[sim][physics
 
 TEST_CASE("a stiffness that blows up the integrator is a clear error with the frame",
           "[sim][physics]") {
-  SimSetup setup = test::small_head(5, 16, "wavy", "shake", 2.0);
-  setup.sim.model = "featherstone";
+  SimSetup setup = test::small_head(5, 16, HairCurl::Wavy, MotionPreset::Shake, 2.0);
+  setup.sim.model = SimModel::Featherstone;
   setup.sim.bend_stiffness = 50.0;
   setup.sim.substeps = 1;
   try {

@@ -1,0 +1,83 @@
+// The ranges of a hair style's fields: see hair_style.hpp. These are the only checks of them; the
+// scene reader reports their messages with the file and "style." in front.
+#include "vector/hair_style.hpp"
+
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "sim/params.hpp"
+
+namespace wisp::vector {
+
+using sim::require;
+
+void validate(const ShadingStyle& s) {
+  require(s.band_threshold > 0 && s.band_threshold <= 1, "band_threshold",
+          "must be in (0, 1] (a colour difference)");
+  const Lighting& l = s.lighting;
+  for (const auto& [weight, field] : {std::pair{l.ambient, "ambient"},
+                                      {l.kajiya_diffuse, "kajiya_diffuse"},
+                                      {l.lambert, "lambert"},
+                                      {l.specular, "specular"}})
+    require(weight >= 0 && weight <= 10, field, "must be a weight in [0, 10]");
+  require(l.shininess > 0 && l.shininess <= 10000, "shininess", "must be in (0, 10000]");
+  require(l.head_shadow >= 0 && l.head_shadow <= 1, "head_shadow", "must be in [0, 1]");
+  require(l.head_offset >= -1 && l.head_offset <= 1, "head_offset", "must be in [-1, 1]");
+  require(l.back_exponent >= 0 && l.back_exponent <= 100, "back_exponent", "must be in [0, 100]");
+  require(s.depth_near >= 0, "depth_near", "must be >= 0 metres (0: the frame's nearest hair)");
+  require(s.depth_far >= 0, "depth_far", "must be >= 0 metres (0: the frame's farthest hair)");
+  require(s.depth_near == 0 || s.depth_far == 0 || s.depth_far > s.depth_near, "depth_far",
+          "must be greater than depth_near");
+  require(s.metric_shininess > 0 && s.metric_shininess <= 10000, "metric_shininess",
+          "must be in (0, 10000]");
+  require(s.sample_px >= 0.25 && s.sample_px <= 100, "sample_px", "must be in [0.25, 100] pixels");
+}
+
+void validate(const HighlightStyle& h) {
+  require(h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
+  require(h.shininess > 0 && h.shininess <= 10000, "shininess", "must be in (0, 10000]");
+  require(h.shin_weight >= 0 && h.shin_weight <= 1, "shin_weight", "must be in [0, 1]");
+  require(h.max_width > 0 && h.max_width <= 1, "max_width",
+          "must be in (0, 1] (a fraction of the wisp's half-width)");
+  require(h.teeth >= 1 && h.teeth <= 16, "teeth", "must be in [1, 16]");
+  require(h.link_distance >= 0, "link_distance", "must be >= 0 pixels");
+  require(h.min_cluster >= 1, "min_cluster", "must be at least 1");
+}
+
+void validate(const InkStyle& k) {
+  for (const auto& [width, lines] :
+       {std::pair{k.silhouette_width, "silhouette"}, {k.occlusion_width, "occlusion"}})
+    require(width >= 0 && width <= 1000, std::string(lines) + "_width",
+            std::string("must be a width in [0, 1000] pixels (0: no ") + lines + " ink)");
+  require(k.reference_size >= 1 && k.reference_size <= 65536, "reference_size",
+          "must be in [1, 65536] pixels");
+  // The tapers at both ends: over a fraction of the strand, down to a width factor.
+  for (const auto& [fade, width, end] :
+       {std::tuple{k.root_fade, k.root_width, "root"}, {k.tip_fade, k.tip_width, "tip"}}) {
+    require(fade >= 0 && fade <= 1, std::string(end) + "_fade",
+            "must be in [0, 1] (a fraction of the strand; 0: no taper)");
+    require(width >= 0 && width <= 1, std::string(end) + "_width",
+            std::string("must be in [0, 1] (the width factor at the ") + end + ")");
+  }
+  require(k.end_taper >= 0, "end_taper", "must be >= 0 pixels");
+  require(k.fit_tolerance > 0 && k.fit_tolerance <= 5, "fit_tolerance", "must be in (0, 5] pixels");
+}
+
+void validate(const HairStyle& s) {
+  require(s.geometry.width > 0 && s.geometry.width <= 1, "width",
+          "must be a width in (0, 1] metres");
+  require(s.geometry.curvature_clamp > 0, "curvature_clamp",
+          "must be > 0 (null disables the clamp)");
+  require(s.highlight_along >= 0 && s.highlight_along <= 1, "highlight_along", "must be in [0, 1]");
+  require(s.highlight_spread > 0 && s.highlight_spread <= 1, "highlight_spread",
+          "must be in (0, 1]");
+  sim::validate_part(s.shading, "shading");
+  sim::validate_part(s.specular, "highlights");
+  sim::validate_part(s.ink, "ink");
+  const Lighting& l = s.shading.lighting;
+  require(s.shading.model != ShadingModel::Lit || l.ambient + l.kajiya_diffuse + l.lambert > 0,
+          "shading", "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");
+}
+
+}  // namespace wisp::vector
