@@ -83,9 +83,12 @@ void run_diffuse(const DiffuseArgs& a) {
     j["height"] = height;
     j["curves"] = file.drawing.curves.size();
     j["warnings"] = file.warnings;
-    j["times_ms"] = {{"read", read_ms},           {"rasterize", st.rasterize_ms},
-                     {"solve", st.solve_ms},      {"antialias", st.antialias_ms},
-                     {"blur", st.blur_ms},        {"write", write_ms},
+    j["times_ms"] = {{"read", read_ms},
+                     {"rasterize", st.rasterize_ms},
+                     {"solve", st.solve_ms},
+                     {"antialias", st.antialias_ms},
+                     {"blur", st.blur_ms},
+                     {"write", write_ms},
                      {"total", diffusion::ms_since(t_start)}};
     j["solver"] = {{"levels", st.solver.levels},
                    {"cycles", st.solver.cycles},
