@@ -28,6 +28,7 @@ struct RenderParams {
   int warm_start_block = 8;        // frames solved in sequence, each warm-started by the previous
   bool video = true;               // write preview.mp4
   int contact_sheet_columns = 6;   // tiles per row of contact.png
+  bool antialias = true;           // mix both sides' colours where sharp curves cross pixels
 };
 
 // Throws std::invalid_argument("field: what") for a field out of range (see sim/params.hpp).

@@ -496,6 +496,7 @@ void parse_render(Fields& f, Scene& s) {
   f.get("warm_start_block", r.warm_start_block);
   f.get("video", r.video);
   f.get("contact_sheet_columns", r.contact_sheet_columns);
+  f.get("antialias", r.antialias);
   f.check(r);
 }
 

@@ -50,6 +50,7 @@ FrameSetup frame_setup(const io::Scene& scene) {
   setup.style = scene.style;
   setup.solver.tolerance = scene.render.solver_tolerance;
   setup.background = scene.render.background_color;
+  setup.antialias = scene.render.antialias;
   return setup;
 }
 

@@ -211,6 +211,7 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
   CHECK(d.render.warm_start_block == 8);
   CHECK(d.render.video);
   CHECK(d.render.contact_sheet_columns == 6);
+  CHECK(d.render.antialias);
 
   const json doc = json::parse(R"({
     "style": {"width": 0.02, "profile": "sine", "curvature_clamp": 0.5,
@@ -220,7 +221,7 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
     "light": {"direction": [0, 3, 4]},
     "render": {"background_color": [1, 1, 1], "skin_color": [0.5, 0.4, 0.3], "body": false,
                "torso": false, "solver_tolerance": 1e-3, "warm_start_block": 3, "video": false,
-               "contact_sheet_columns": 4}
+               "contact_sheet_columns": 4, "antialias": false}
   })");
   const wisp::io::Scene s = parse_scene(doc, "scene.json");
   CHECK(s.style.geometry.width == 0.02);
@@ -241,6 +242,9 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
   CHECK(s.render.warm_start_block == 3);
   CHECK(!s.render.video);
   CHECK(s.render.contact_sheet_columns == 4);
+  CHECK(!s.render.antialias);
+  CHECK(error_of({{"render", {{"antialias", 1}}}}) ==
+        "scene.json: render.antialias: expected true or false, got 1");
 
   // "taper" is Faraj's pointy wisp; null turns the curvature clamp off.
   const wisp::io::Scene t = parse_scene(
