@@ -175,9 +175,11 @@ void parse_head(Fields& f, Scene& s) {
   f.get("shoulders", h.shoulders);
   f.get("shoulder_center", h.shoulder_center);
   f.get("shoulder_half_width", h.shoulder_half_width);
-  require(f, h.shoulder_half_width >= 0, "shoulder_half_width", "must be >= 0");
+  require(f, h.shoulder_half_width > 0, "shoulder_half_width", "must be positive");
   f.get("shoulder_radius", h.shoulder_radius);
   require(f, h.shoulder_radius > 0, "shoulder_radius", "must be positive");
+  f.get("torso_turn", h.torso_turn);
+  require(f, h.torso_turn >= 0 && h.torso_turn <= 1, "torso_turn", "must be in [0, 1]");
 }
 
 void parse_hair(Fields& f, Scene& s) {

@@ -58,14 +58,6 @@ double ray_triangle(const Vector3d& o, const Vector3d& d, const Vector3d& a, con
 
 }  // namespace
 
-double Capsule::distance(const Vector3d& p, Vector3d* normal) const {
-  Vector3d q = p - center;
-  q.x() -= std::clamp(q.x(), -half_width, half_width);
-  const double len = q.norm();
-  if (normal) *normal = len > 1e-12 ? Vector3d(q / len) : Vector3d::UnitY();
-  return len - radius;
-}
-
 HeadShape::HeadShape(HeadGeometry geometry) : geometry_(std::move(geometry)) {
   if (geometry_.shape == "ellipsoid") {
     const Vector3d& r = geometry_.radii;

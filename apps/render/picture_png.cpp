@@ -36,6 +36,15 @@ void polygon_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
   cairo_close_path(cr);
 }
 
+// 3k+1 control points as a path of cubics, closed or not.
+void bezier_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& q, bool closed) {
+  if (q.size() < 4) return;
+  cairo_move_to(cr, q[0].x(), q[0].y());
+  for (size_t i = 1; i + 2 < q.size(); i += 3)
+    cairo_curve_to(cr, q[i].x(), q[i].y(), q[i + 1].x(), q[i + 1].y(), q[i + 2].x(), q[i + 2].y());
+  if (closed) cairo_close_path(cr);
+}
+
 void mask_path(cairo_t* cr, const vector::HairMask& mask) {
   cairo_new_path(cr);
   for (const vector::MaskPolygon& poly : mask.polygons) {
@@ -94,16 +103,13 @@ Surface draw(const FramePicture& pic) {
   cairo_t* c = cr.get();
   set_rgb(c, pic.background);
   cairo_paint(c);
-  // Body: each polygon filled and outlined in its own colour, which hides the hairline seams that
-  // anti-aliasing leaves between neighbouring triangles.
-  cairo_set_line_width(c, 0.5);
-  cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
-  for (const BodyPolygon& poly : pic.body) {
+  // Body: one fill per tone region, all its loops in one path (no interior edge is drawn).
+  cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
+  for (const BodyPath& region : pic.body) {
     cairo_new_path(c);
-    polygon_path(c, poly.points);
-    set_rgb(c, poly.color);
-    cairo_fill_preserve(c);
-    cairo_stroke(c);
+    for (const auto& loop : region.loops) bezier_path(c, loop, true);
+    set_rgb(c, region.color);
+    cairo_fill(c);
   }
   if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
     Surface hair = hair_surface(pic.hair);
@@ -123,11 +129,7 @@ Surface draw(const FramePicture& pic) {
       set_rgb(c, ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
         cairo_new_path(c);
-        const auto& q = piece.points;
-        cairo_move_to(c, q[0].x(), q[0].y());
-        for (size_t i = 1; i + 2 < q.size(); i += 3)
-          cairo_curve_to(c, q[i].x(), q[i].y(), q[i + 1].x(), q[i + 1].y(), q[i + 2].x(),
-                         q[i + 2].y());
+        bezier_path(c, piece.points, false);
         cairo_set_line_width(c, piece.width);
         cairo_stroke(c);
       }

@@ -39,6 +39,17 @@ void ring_path(std::ostringstream& o, const std::vector<Eigen::Vector2d>& ring) 
   if (!ring.empty()) o << " Z";
 }
 
+// 3k+1 control points as path data "M.. C.. [Z]".
+std::string bezier_path(const std::vector<Eigen::Vector2d>& q, bool closed) {
+  std::ostringstream o;
+  o << 'M' << num(q[0].x()) << ' ' << num(q[0].y());
+  for (size_t i = 1; i + 2 < q.size(); i += 3)
+    o << " C" << num(q[i].x()) << ' ' << num(q[i].y()) << ' ' << num(q[i + 1].x()) << ' '
+      << num(q[i + 1].y()) << ' ' << num(q[i + 2].x()) << ' ' << num(q[i + 2].y());
+  if (closed) o << " Z";
+  return o.str();
+}
+
 std::string mask_path(const vector::MaskPolygon& poly) {
   std::ostringstream o;
   ring_path(o, poly.outer);
@@ -119,12 +130,12 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
     << ' ' << pic.height << "\">\n";
   o << " <rect id=\"background\" width=\"" << pic.width << "\" height=\"" << pic.height
     << "\" fill=\"" << hex(pic.background) << "\"/>\n";
-  o << " <g id=\"body\" stroke-width=\"0.5\" stroke-linejoin=\"round\">\n";
-  for (const BodyPolygon& poly : pic.body) {
-    std::ostringstream d;
-    ring_path(d, poly.points);
-    const std::string c = hex(poly.color);
-    o << "  <path d=\"" << d.str() << "\" fill=\"" << c << "\" stroke=\"" << c << "\"/>\n";
+  // One path per tone region (apps/render/body_paths.hpp), nonzero fill: no interior edges.
+  o << " <g id=\"body\" fill-rule=\"nonzero\" stroke=\"none\">\n";
+  for (const BodyPath& region : pic.body) {
+    o << "  <path d=\"";
+    for (const auto& loop : region.loops) o << bezier_path(loop, true) << ' ';
+    o << "\" fill=\"" << hex(region.color) << "\"/>\n";
   }
   o << " </g>\n";
 
@@ -156,26 +167,16 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
 
   o << " <g id=\"wisp-outlines\" style=\"display:none\" fill=\"none\" stroke=\"#ff00ff\" "
        "stroke-width=\"0.5\">\n";
-  for (const auto& pts : pic.outlines) {
-    if (pts.size() < 4) continue;
-    o << "  <path d=\"M" << num(pts[0].x()) << ' ' << num(pts[0].y());
-    for (size_t i = 1; i + 2 < pts.size(); i += 3)
-      o << " C" << num(pts[i].x()) << ' ' << num(pts[i].y()) << ' ' << num(pts[i + 1].x()) << ' '
-        << num(pts[i + 1].y()) << ' ' << num(pts[i + 2].x()) << ' ' << num(pts[i + 2].y());
-    o << "\"/>\n";
-  }
+  for (const auto& pts : pic.outlines)
+    if (pts.size() >= 4) o << "  <path d=\"" << bezier_path(pts, false) << "\"/>\n";
   o << " </g>\n <g id=\"ink\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
   for (const InkStroke& ink : pic.ink) {
     if (!ink.curve.empty()) {
       // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
       const std::string color = hex(ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
-        const auto& q = piece.points;
-        o << "  <path d=\"M" << num(q[0].x()) << ' ' << num(q[0].y());
-        for (size_t i = 1; i + 2 < q.size(); i += 3)
-          o << " C" << num(q[i].x()) << ' ' << num(q[i].y()) << ' ' << num(q[i + 1].x()) << ' '
-            << num(q[i + 1].y()) << ' ' << num(q[i + 2].x()) << ' ' << num(q[i + 2].y());
-        o << "\" stroke=\"" << color << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
+        o << "  <path d=\"" << bezier_path(piece.points, false) << "\" stroke=\"" << color
+          << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
       }
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
       o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)

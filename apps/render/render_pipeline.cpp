@@ -82,7 +82,7 @@ InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
 
 }  // namespace
 
-FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
+FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPath> body,
                          std::vector<vector::Occluder> occluders, const FrameSetup& setup,
                          const std::vector<float>* warm_start) {
   const auto t_start = Clock::now();
