@@ -14,13 +14,18 @@
 //
 // Per surface (ProjectedSurface, drawn back to front): the pieces are the front faces cut where
 // the surface runs inside a solid drawn before it (clearance 0), split by the light's
-// half-Lambert shade at `threshold`. The whole visible surface (the silhouette) is filled in the
-// lit tone, then the shadow region on top: the two tones never meet edge to edge, so no seam can
-// open between them either. Outlines are smoothed into cubic Beziers (vector::fit_cubics, within
-// `tolerance` px of the exact polylines): the silhouette, the cut and the terminator, the last
-// being the shade's iso-line interpolated across the triangles, not their edges. Where the
-// terminator meets the silhouette, both regions break their outlines there, so the shadow's part
-// of the silhouette is the very same cubics as the lit one's.
+// half-Lambert shade at `threshold` (the terminator). The two tones never meet edge to edge: the
+// lit tone is filled first and reaches `overlap` px under the shadow (to an offset of the
+// terminator, the shade's level divided by its image gradient), then the shadow region on top,
+// so no seam can open between them. Filling the whole silhouette in the lit tone would do that
+// too, but where the shadow reaches the silhouette, both fills' anti-aliased edges would fall on
+// the same pixels and leave a lit fringe along it (the same conflation); with the offset, that
+// happens only within `overlap` px of where the terminator meets the silhouette.
+//
+// Outlines are smoothed into cubic Beziers (vector::fit_cubics, within `tolerance` px of the
+// exact polylines): the silhouette, the cut and the terminator, the last being the shade's level
+// interpolated across the triangles, not their edges. Both fills break their outlines wherever
+// either changes course, so the silhouette they share is the very same cubics in both.
 #pragma once
 
 #include <vector>
@@ -34,9 +39,10 @@ struct BodyTones {
   Rgb lit{0.96f, 0.80f, 0.69f}, shadow{0.69f, 0.58f, 0.50f};
   float threshold = 0.45f;  // half-Lambert shade below which the shadow tone shows
   double tolerance = 0.25;  // px: largest distance of the fitted outlines from the exact ones
+  double overlap = 2;       // px: how far the lit fill reaches under the shadow
 };
 
-// Per surface in drawing order: its lit silhouette, then its shadow region (when not empty).
+// Per surface in drawing order: its lit fill, then its shadow region (each when not empty).
 std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones& tones);
 
 }  // namespace wisp::render

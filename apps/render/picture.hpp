@@ -25,7 +25,7 @@ struct BodyPath {
   std::vector<std::vector<Eigen::Vector2d>> loops;
   Rgb color = Rgb::Zero();
   int part = 0;         // sim::BodyPart
-  bool shadow = false;  // the shadow tone, drawn over its surface's lit silhouette
+  bool shadow = false;  // the shadow tone, drawn over its surface's lit fill
 };
 
 // A variable-width stroke: the polyline's width at each point, in pixels.
