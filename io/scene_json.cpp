@@ -610,6 +610,8 @@ void parse_render(Fields& f, Scene& s) {
   f.color("skin_color", r.skin_color);
   f.get("body", r.body);
   f.get("torso", r.torso);
+  f.get("face", r.face);
+  f.color("face_color", r.face_color);
   f.get("solver_tolerance", r.solver_tolerance);
   require(f, r.solver_tolerance > 0 && r.solver_tolerance < 1, "solver_tolerance",
           "must be in (0, 1) (relative residual)");

@@ -147,10 +147,10 @@ BodyParams body_params(const HeadParams& head) {
                            {-0.40, 0.125, 0.095, 0.012},
                            {-0.26, 0.138, 0.100, 0.02},
                            {-0.14, 0.150, 0.095, 0.018},
-                           {-0.07, 0.158, 0.085, 0.01},
-                           {-0.02, 0.165, 0.072, 0.0},
-                           {0.0, 0.165, 0.066, -0.005},
-                           {0.02, 0.135, 0.060, -0.012},
+                           {-0.07, 0.155, 0.085, 0.01},
+                           {-0.02, 0.158, 0.072, 0.0},
+                           {0.0, 0.152, 0.066, -0.005},
+                           {0.02, 0.128, 0.060, -0.012},
                            {0.04, 0.085, 0.054, -0.018},
                            {0.055, 0.058, 0.048, -0.02},
                            {0.07, 0.042, 0.040, -0.02},
@@ -160,13 +160,13 @@ BodyParams body_params(const HeadParams& head) {
   b.torso_length = h1 - h0;
   // The +x upper arm: from the elbow, a little out and back, up to the deltoid's dome under the
   // acromion; its inner half stays inside the torso's shoulder.
-  b.elbow = Vector3d(sx * 0.205, acromion - 0.30, s.z() - 0.02);
-  b.shoulder = Vector3d(sx * 0.172, acromion + 0.0, s.z() - 0.008);
+  b.elbow = Vector3d(sx * 0.19, acromion - 0.30, s.z() - 0.02);
+  b.shoulder = Vector3d(sx * 0.17, acromion + 0.004, s.z() - 0.008);
   b.arm_shape = profile({{0, 0, 0, 0},
-                         {0.06, 0.036, 0.038, 0},
-                         {0.3, 0.040, 0.043, 0},
-                         {0.6, 0.044, 0.047, 0},
-                         {0.86, 0.048, 0.050, 0},
+                         {0.06, 0.035, 0.038, 0},
+                         {0.3, 0.039, 0.042, 0},
+                         {0.6, 0.043, 0.046, 0},
+                         {0.9, 0.047, 0.049, 0},
                          {1, 0, 0, 0}},
                         0, 1, sz, sz);
   // The neck: from inside the torso, flaring where it leaves the trapezius, up into the head.
@@ -313,6 +313,7 @@ bool BodyShape::blocks(const Posed& at, const Vector3d& eye, const Vector3d& x, 
 BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
     : shape_(body), head_shape_(head) {
   const BodyParams& b = shape_.params();
+  if (b.head && b.face) face_ = face_lines(head_shape_);
   if (b.head) {
     if (head.shape == "ellipsoid") {
       const TriangleMesh sphere = uv_sphere(b.slices, b.stacks);
@@ -413,6 +414,12 @@ std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3
 double BodyModel::distance(const HeadPose& pose, const BodySurface& s, const Vector3d& x) const {
   if (s.solid < 0) return head_shape_.distance(pose.to_local(x));
   return shape_.solid_distance(s.solid, shape_.posed(pose), x);
+}
+
+std::vector<FaceStroke> BodyModel::face(const HeadPose& pose, const Camera& camera) const {
+  // The lines lie on the head: its own surface within 3 mm of a sample does not hide it.
+  return project_face(face_, pose, camera,
+                      [&](const Vector3d& x) { return blocks(pose, camera.eye, x, 0.003); });
 }
 
 bool BodyModel::blocks(const HeadPose& pose, const Vector3d& eye, const Vector3d& x,

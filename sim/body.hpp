@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "sim/camera.hpp"
+#include "sim/face.hpp"
 #include "sim/head.hpp"
 #include "sim/params.hpp"
 #include "sim/sweep.hpp"
@@ -42,6 +43,7 @@ struct BodyParams {
   bool head = true;   // draw the head
   bool neck = true;   // draw the neck
   bool torso = true;  // draw the torso and the upper arms
+  bool face = true;   // with `head`: draw facial features (sim/face.hpp)
   int slices = 96;    // vertices around each surface, 3 to 1024
   int stacks = 48;    // head: rings from pole to pole, 2 to 1024 (sweeps: rings as finely spaced)
   double torso_turn = 0.35;  // the torso's share of the head's yaw, in [0, 1]
@@ -173,6 +175,9 @@ class BodyModel {
   ProjectedBody project(const HeadPose& pose, const Camera& camera,
                         const Eigen::Vector3d& light_dir) const;
 
+  // The facial features' visible runs (none unless the head and its face are drawn).
+  std::vector<FaceStroke> face(const HeadPose& pose, const Camera& camera) const;
+
   // Signed distance of world point x to the solid of surface `s` (a BodySurface's part/solid).
   double distance(const HeadPose& pose, const BodySurface& s, const Eigen::Vector3d& x) const;
 
@@ -191,6 +196,7 @@ class BodyModel {
   Mesh head_;              // head-local
   Mesh torso_, arm_plus_;  // sweep-local (the other arm uses the same local mesh)
   SweepMesh neck_;         // rebuilt per frame from (t, theta): its length follows the pose
+  std::vector<FaceLine> face_;
 };
 
 // One-shot form of BodyModel(head, body).project(pose, Camera::look_at(camera), light_dir).

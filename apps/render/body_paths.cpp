@@ -1,4 +1,4 @@
-// Seamless tone regions of the body's surfaces (see body_paths.hpp).
+// Seamless tone regions of the body's surfaces, and the face's strokes (see body_paths.hpp).
 #include "apps/render/body_paths.hpp"
 
 #include <Eigen/Dense>
@@ -7,6 +7,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "vector/bezier.hpp"
 #include "vector/stroke_fit.hpp"
 
 namespace wisp::render {
@@ -295,6 +296,28 @@ std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones
         path.loops.push_back(fitted_loop(loop, pieces, junction, tones.tolerance));
       out.push_back(std::move(path));
     }
+  }
+  return out;
+}
+
+std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, const Rgb& color) {
+  std::vector<InkStroke> out;
+  for (const sim::FaceStroke& run : runs) {
+    InkStroke s;
+    s.color = color;
+    for (std::size_t i = 0; i < run.points.size(); ++i)
+      if (s.points.empty() || (run.points[i] - s.points.back()).norm() > 1e-6) {
+        s.points.push_back(run.points[i]);
+        s.width.push_back(run.width[i]);
+      }
+    if (s.points.size() < 2) continue;
+    // One cubic per span, so sample k sits at s = k / spans.
+    const std::vector<vector::Cubic> spans = vector::catmull_rom_spans(s.points);
+    s.curve.push_back(spans.front()[0]);
+    for (const vector::Cubic& c : spans) s.curve.insert(s.curve.end(), c.begin() + 1, c.end());
+    for (std::size_t k = 0; k < s.points.size(); ++k)
+      s.curve_width.emplace_back(double(k) / spans.size(), s.width[k]);
+    out.push_back(std::move(s));
   }
   return out;
 }

@@ -45,4 +45,14 @@ struct BodyTones {
 // Per surface in drawing order: its lit fill, then its shadow region (each when not empty).
 std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones& tones);
 
+// The facial features' visible runs (sim::BodyModel::face) as ink strokes in `color`: smooth
+// cubic paths through the samples (centripetal Catmull-Rom, vector/bezier.hpp) with their widths.
+std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, const Rgb& color);
+
+// A frame's body layer: the skin's tone regions, then the face's lines.
+struct BodyLayer {
+  std::vector<BodyPath> paths;
+  std::vector<InkStroke> face;
+};
+
 }  // namespace wisp::render

@@ -120,6 +120,26 @@ std::string ink_outline(const InkStroke& ink) {
   return o.str();
 }
 
+// A group of ink strokes.
+void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStroke>& strokes) {
+  o << " <g id=\"" << id
+    << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  for (const InkStroke& ink : strokes) {
+    if (!ink.curve.empty()) {
+      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
+      const std::string color = hex(ink.color);
+      for (const InkPiece& piece : ink_pieces(ink)) {
+        o << "  <path d=\"" << bezier_path(piece.points, false) << "\" stroke=\"" << color
+          << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
+      }
+    } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
+      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
+        << "\" stroke=\"none\"/>\n";
+    }
+  }
+  o << " </g>\n";
+}
+
 }  // namespace
 
 std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
@@ -138,6 +158,7 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
     o << "\" fill=\"" << hex(region.color) << "\"/>\n";
   }
   o << " </g>\n";
+  ink_group(o, "face", pic.face);  // on the head, under the hair
 
   const std::string silhouette = mask_path(pic.mask);
   if (style == SvgStyle::Embedded) {
@@ -169,21 +190,9 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
        "stroke-width=\"0.5\">\n";
   for (const auto& pts : pic.outlines)
     if (pts.size() >= 4) o << "  <path d=\"" << bezier_path(pts, false) << "\"/>\n";
-  o << " </g>\n <g id=\"ink\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-  for (const InkStroke& ink : pic.ink) {
-    if (!ink.curve.empty()) {
-      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
-      const std::string color = hex(ink.color);
-      for (const InkPiece& piece : ink_pieces(ink)) {
-        o << "  <path d=\"" << bezier_path(piece.points, false) << "\" stroke=\"" << color
-          << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
-      }
-    } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
-      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
-        << "\" stroke=\"none\"/>\n";
-    }
-  }
-  o << " </g>\n</svg>\n";
+  o << " </g>\n";
+  ink_group(o, "ink", pic.ink);
+  o << "</svg>\n";
   return o.str();
 }
 

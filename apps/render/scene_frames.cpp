@@ -55,12 +55,15 @@ BodyTones body_tones(const io::Scene& scene) {
   return tones;
 }
 
-std::vector<BodyPath> frame_body(const SceneFrames& frames, int k) {
+BodyLayer frame_body(const SceneFrames& frames, int k) {
   if (!frames.body) return {};
   const io::Scene& scene = frames.scene;
-  const sim::ProjectedBody body = frames.body->project(
-      frames.anim.frames.at(k).head, sim::Camera::look_at(scene.camera), scene.light_dir);
-  return body_paths(body, body_tones(scene));
+  const sim::HeadPose& pose = frames.anim.frames.at(k).head;
+  const sim::Camera camera = sim::Camera::look_at(scene.camera);
+  BodyLayer layer;
+  layer.paths = body_paths(frames.body->project(pose, camera, scene.light_dir), body_tones(scene));
+  layer.face = face_strokes(frames.body->face(pose, camera), scene.render.face_color);
+  return layer;
 }
 
 std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) {

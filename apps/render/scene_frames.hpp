@@ -49,9 +49,9 @@ FrameSetup frame_setup(const io::Scene& scene);
 // The skin tones of a scene: render.skin_color where lit, 72 % of it in shadow.
 BodyTones body_tones(const io::Scene& scene);
 
-// The body under the hair in frame k as seamless paths of two flat skin tones, back to front
-// (apps/render/body_paths.hpp).
-std::vector<BodyPath> frame_body(const SceneFrames& frames, int k);
+// The body under the hair in frame k: seamless paths of two flat skin tones, back to front, and
+// the face's lines (apps/render/body_paths.hpp).
+BodyLayer frame_body(const SceneFrames& frames, int k);
 
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
 // the scene draws no body.

@@ -511,3 +511,57 @@ TEST_CASE("with shoulders on, strands stay out of the neck, torso and arms as dr
   CHECK(deepest >= 0);
   CHECK(resting > 100);  // the hair does reach the shoulders
 }
+
+TEST_CASE("the face turns with the head: the eyes move the way it turns and hide facing away",
+          "[sim][body]") {
+  CameraParams cp = three_quarter_camera(512);
+  cp.eye = Vector3d(0, 0, 1);  // in front of the face
+  cp.target = Vector3d::Zero();
+  const Camera cam = Camera::look_at(cp);
+  const BodyModel model(HeadGeometry{}, body_params(HeadParams{}));
+  // The centroid of the irises' samples in the image, and how many features show.
+  const auto eyes = [&](double yaw, int* features = nullptr) {
+    HeadPose pose;
+    pose.rotation = rotation_from_ypr(Vector3d(yaw, 0, 0));
+    Vector2d sum = Vector2d::Zero();
+    int n = 0;
+    const std::vector<FaceStroke> face = model.face(pose, cam);
+    for (const FaceStroke& s : face)
+      if (s.feature == Feature::Iris)
+        for (const Vector2d& p : s.points) sum += p, ++n;
+    if (features) *features = int(face.size());
+    return n > 0 ? Vector2d(sum / n) : Vector2d(NAN, NAN);
+  };
+  int all = 0;
+  const Vector2d front = eyes(0, &all);
+  CHECK(all == 9);  // two brows, lids and irises, the nose, the mouth and the lower lip
+  CHECK(front.x() == Approx(256).margin(0.5));  // symmetric
+  CHECK(front.y() > 256 - 20);                  // about level with the head's centre
+  // Yaw turns the face towards +x, which is the image's right for this camera.
+  double last = front.x();
+  for (double yaw : {10.0, 25.0, 40.0}) {
+    const Vector2d e = eyes(yaw);
+    INFO("yaw " << yaw);
+    CHECK(e.x() > last + 5);
+    CHECK(std::abs(e.y() - front.y()) < 5);
+    last = e.x();
+  }
+  CHECK(eyes(-25).x() < front.x() - 5);
+  int behind = -1;
+  eyes(180, &behind);
+  CHECK(behind == 0);  // facing away: nothing shows
+  // Seen from the side, only the near eye shows.
+  HeadPose side;
+  side.rotation = rotation_from_ypr(Vector3d(90, 0, 0));
+  int irises = 0;
+  for (const FaceStroke& s : model.face(side, cam)) irises += s.feature == Feature::Iris;
+  CHECK(irises == 1);
+  // Hidden samples split a line into visible runs, the widths fade to nothing at the outline.
+  const std::vector<FaceLine> lines = face_lines(HeadShape(HeadGeometry{}));
+  const std::vector<FaceStroke> cut = project_face(lines, HeadPose{}, cam, [](const Vector3d& x) {
+    return std::abs(x.x()) < 0.004;  // a thin occluder down the middle of the face
+  });
+  int mouth_runs = 0;
+  for (const FaceStroke& s : cut) mouth_runs += s.feature == Feature::Mouth;
+  CHECK(mouth_runs == 4);  // the mouth and the lower lip, each cut in two
+}
