@@ -158,15 +158,17 @@ BodyParams body_params(const HeadParams& head) {
                           h0, h1, sx, sz);
   b.torso_bottom = Vector3d(0, acromion + h0, s.z());
   b.torso_length = h1 - h0;
-  // The +x upper arm: from the elbow, a little out and back, up to the deltoid's dome under the
-  // acromion; its inner half stays inside the torso's shoulder.
-  b.elbow = Vector3d(sx * 0.19, acromion - 0.30, s.z() - 0.02);
+  // The +x arm, hanging: from below the elbow (the forearm leaves the picture with the torso),
+  // a little out and back, up to the deltoid's dome under the acromion; its inner half stays
+  // inside the torso's shoulder.
+  b.arm_bottom = Vector3d(sx * 0.2, acromion - 0.56, s.z() - 0.03);
   b.shoulder = Vector3d(sx * 0.17, acromion + 0.004, s.z() - 0.008);
+  // Elbow at 0.45, biceps, deltoid, and a dome 3 cm high.
   b.arm_shape = profile({{0, 0, 0, 0},
-                         {0.06, 0.035, 0.038, 0},
-                         {0.3, 0.039, 0.042, 0},
-                         {0.6, 0.043, 0.046, 0},
-                         {0.9, 0.047, 0.049, 0},
+                         {0.04, 0.031, 0.033, 0},
+                         {0.45, 0.035, 0.038, 0},
+                         {0.68, 0.041, 0.044, 0},
+                         {0.946, 0.047, 0.049, 0},
                          {1, 0, 0, 0}},
                         0, 1, sz, sz);
   // The neck: from inside the torso, flaring where it leaves the trapezius, up into the head.
@@ -200,14 +202,15 @@ void validate(const BodyParams& b) {
   validate_sweep(b.arm_shape, "arm_shape");
   validate_sweep(b.neck_shape, "neck_shape");
   const std::pair<const Vector3d*, const char*> points[] = {{&b.torso_bottom, "torso_bottom"},
-                                                            {&b.elbow, "elbow"},
+                                                            {&b.arm_bottom, "arm_bottom"},
                                                             {&b.shoulder, "shoulder"},
                                                             {&b.neck_bottom, "neck_bottom"},
                                                             {&b.neck_top, "neck_top"}};
   for (const auto& [p, field] : points)
     if (!p->allFinite()) fail(field, "not finite");
   if (!(b.torso_length > 0) || !std::isfinite(b.torso_length)) fail("torso_length", "must be > 0");
-  if (!((b.shoulder - b.elbow).norm() > 1e-3)) fail("shoulder", "must be away from the elbow");
+  if (!((b.shoulder - b.arm_bottom).norm() > 1e-3))
+    fail("shoulder", "must be away from arm_bottom");
 }
 
 double head_yaw(const HeadPose& pose) {
@@ -249,10 +252,10 @@ BodyShape::Placement BodyShape::placement(const HeadPose& pose, int solid) const
       break;
     default: {
       const bool plus = solid == kArmPlus;
-      const Vector3d elbow = plus ? body_.elbow : mirror_x(body_.elbow);
+      const Vector3d bottom = plus ? body_.arm_bottom : mirror_x(body_.arm_bottom);
       const Vector3d shoulder = plus ? body_.shoulder : mirror_x(body_.shoulder);
-      p.frame = axis_frame(body * elbow, body * shoulder, forward);
-      p.length = (shoulder - elbow).norm();
+      p.frame = axis_frame(body * bottom, body * shoulder, forward);
+      p.length = (shoulder - bottom).norm();
     }
   }
   return p;
@@ -339,7 +342,7 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
   if (b.torso) {
     for (auto [solid, length, slices, out] :
          {std::make_tuple(int(BodyShape::kTorso), b.torso_length, b.slices, &torso_),
-          std::make_tuple(int(BodyShape::kArmPlus), (b.shoulder - b.elbow).norm(), limb_slices,
+          std::make_tuple(int(BodyShape::kArmPlus), (b.shoulder - b.arm_bottom).norm(), limb_slices,
                           &arm_plus_)}) {
       const SweepMesh m = build(solid, length, slices);
       const SweepShape& s = shape_.shape(solid);

@@ -11,7 +11,7 @@
 //    inside the head (head-local: it follows the head's turns and nods), flaring at its base;
 //  - the torso: a sweep up the body frame's vertical whose elliptic sections narrow from the
 //    chest through the shoulders (acromions) along the trapezius slope into the neck's base;
-//  - two upper arms: sweeps from the elbows up to the deltoids' domes, which round off the
+//  - two arms: sweeps from below the elbows up to the deltoids' domes, which round off the
 //    shoulders, hanging a little outwards.
 // The body frame is the head's position turned about the vertical by `torso_turn` times the
 // head's yaw: the torso follows the head's translation (a walk's bob and sway) and part of its
@@ -51,10 +51,10 @@ struct BodyParams {
   Sweep torso_shape;
   Eigen::Vector3d torso_bottom{0, -0.81, 0};
   double torso_length = 0.645;
-  // The upper arm on the +x side, from the elbow up to the top of its deltoid (body frame); the
+  // The arm on the +x side, from its lower end up to the top of its deltoid (body frame); the
   // other arm is its mirror image.
   Sweep arm_shape;
-  Eigen::Vector3d elbow{0.2, -0.53, -0.04}, shoulder{0.17, -0.215, -0.03};
+  Eigen::Vector3d arm_bottom{0.2, -0.75, -0.05}, shoulder{0.17, -0.186, -0.028};
   // Neck: from `neck_bottom` (body frame) to `neck_top` (head-local).
   Sweep neck_shape;
   Eigen::Vector3d neck_bottom{0, -0.25, -0.035}, neck_top{0, -0.045, -0.012};

@@ -353,8 +353,8 @@ TEST_CASE("bad body parameters are rejected naming the field", "[sim][body]") {
   b.slices = 2;
   CHECK_THROWS_WITH(BodyModel(HeadGeometry{}, b), Catch::Contains("body.slices"));
   b = body_params(HeadParams{});
-  b.elbow.y() = std::nan("");
-  CHECK_THROWS_WITH(validate(b), Catch::Contains("body.elbow"));
+  b.arm_bottom.y() = std::nan("");
+  CHECK_THROWS_WITH(validate(b), Catch::Contains("body.arm_bottom"));
   b = body_params(HeadParams{});
   b.torso_turn = 1.5;
   CHECK_THROWS_WITH(BodyShape(b), Catch::Contains("body.torso_turn"));
