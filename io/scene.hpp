@@ -21,9 +21,11 @@ namespace wisp::io {
 // Colours are RGB in [0,1], in the same space as the style's colours.
 struct RenderParams {
   Eigen::Vector3f background_color{0.93f, 0.91f, 0.87f};
-  Eigen::Vector3f skin_color{0.96f, 0.80f, 0.69f};  // head, neck and torso (shaded by the light)
-  bool body = true;                // draw the head (and neck and torso) under the hair
-  bool torso = true;               // with `body`: also the neck, shoulders and chest
+  Eigen::Vector3f skin_color{0.96f, 0.80f, 0.69f};  // head and body (shaded by the light)
+  bool body = true;   // draw the head (and neck and torso) under the hair
+  bool torso = true;  // with `body`: also the neck, torso and upper arms
+  bool face = true;   // with `body`: facial features on the head
+  Eigen::Vector3f face_color{0.36f, 0.22f, 0.18f};  // their ink
   double solver_tolerance = 1e-4;  // diffusion solve: relative residual per channel
   int warm_start_block = 8;        // frames solved in sequence, each warm-started by the previous
   bool video = true;               // write preview.mp4

@@ -195,6 +195,7 @@ void parse_head(Fields& f, Scene& s) {
   f.get("shoulder_center", h.shoulder_center);
   f.get("shoulder_half_width", h.shoulder_half_width);
   f.get("shoulder_radius", h.shoulder_radius);
+  f.get("torso_turn", h.torso_turn);
   f.check(h);
 }
 
@@ -492,6 +493,8 @@ void parse_render(Fields& f, Scene& s) {
   f.color("skin_color", r.skin_color);
   f.get("body", r.body);
   f.get("torso", r.torso);
+  f.get("face", r.face);
+  f.color("face_color", r.face_color);
   f.get("solver_tolerance", r.solver_tolerance);
   f.get("warm_start_block", r.warm_start_block);
   f.get("video", r.video);

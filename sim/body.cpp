@@ -1,499 +1,488 @@
-// BodyModel: see body.hpp. Ellipsoids and capsules share one tessellation, a UV sphere of
-// `slices` x `stacks` around a local axis; a capsule is that sphere cut at the equator, its two
-// halves moved to the ends of the axis and joined by a band of quads. Every vertex is scaled by
-// the same factor k >= 1, the smallest that puts every face plane of the unit UV sphere at
-// distance >= 1 from its centre: the polyhedron then contains the true surface (roots on the
-// scalp project inside the drawn head) and exceeds it by at most r (k - 1), 0.4 % at 40 x 20.
+// BodyShape and BodyModel: see body.hpp. The head is a UV sphere of `slices` x `stacks` scaled to
+// the ellipsoid, every vertex pushed out by the same factor k >= 1, the smallest that puts every
+// face plane of the unit UV sphere at distance >= 1 from its centre: the polyhedron then contains
+// the true surface (roots on the scalp project inside the drawn head) and exceeds it by at most
+// r (k - 1), 0.05 % at 96 x 48. The sweeps' vertices lie on their true surfaces.
 #include "sim/body.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace wisp::sim {
 namespace {
 
 using Eigen::Vector3d;
 
-// A vertex of the sphere / capsule template: a point of the unit sphere (z is the axis, -z
-// towards end 0) and where along the axis it hangs (0 = end 0, 1 = end 1).
-struct TemplateVertex {
-  Vector3d p;
-  double along = 0;
-};
-
-struct Template {
-  std::vector<TemplateVertex> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-};
-
-// `bands` > 0 makes a capsule: the equator ring is repeated bands + 1 times along the axis.
-Template lathe(int slices, int stacks, int bands) {
-  const bool capsule = bands > 0;
-  Template t;
-  const auto ring_point = [&](double theta, int j) {
-    const double phi = 2 * M_PI * j / slices;
-    return Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                    -std::cos(theta));
-  };
-  t.vertices.push_back({Vector3d(0, 0, -1), 0});  // pole of end 0
-  std::vector<int> ring_start;
-  const auto add_ring = [&](int i, double along) {
-    ring_start.push_back(static_cast<int>(t.vertices.size()));
-    const double theta = M_PI * i / stacks;
-    for (int j = 0; j < slices; ++j) t.vertices.push_back({ring_point(theta, j), along});
-  };
+// A UV sphere of unit radius around the y axis (poles at the crown and under the chin), outward
+// counter-clockwise triangles.
+TriangleMesh uv_sphere(int slices, int stacks) {
+  TriangleMesh m;
+  m.vertices.push_back(Vector3d(0, -1, 0));
   for (int i = 1; i < stacks; ++i) {
-    if (capsule && 2 * i == stacks) {
-      for (int b = 0; b <= bands; ++b) add_ring(i, double(b) / bands);
-    } else {
-      add_ring(i, capsule && 2 * i > stacks ? 1.0 : 0.0);
+    const double theta = M_PI * i / stacks;
+    for (int j = 0; j < slices; ++j) {
+      const double phi = 2 * M_PI * j / slices;
+      m.vertices.push_back(Vector3d(std::sin(theta) * std::cos(phi), -std::cos(theta),
+                                    std::sin(theta) * std::sin(phi)));
     }
   }
-  const int pole1 = static_cast<int>(t.vertices.size());
-  t.vertices.push_back({Vector3d(0, 0, 1), capsule ? 1.0 : 0.0});
-
-  const auto at = [&](int ring, int j) { return ring_start[ring] + (j % slices); };
-  const int rings = static_cast<int>(ring_start.size());
+  const int top = int(m.vertices.size());
+  m.vertices.push_back(Vector3d(0, 1, 0));
+  // Rings go up (+y) and around from +x towards +z: (up, around) is outward, as for sweeps.
+  const auto at = [&](int ring, int j) { return 1 + (ring - 1) * slices + j % slices; };
+  const int rings = stacks;
   for (int j = 0; j < slices; ++j) {
-    t.triangles.emplace_back(0, at(0, j), at(0, j + 1));
-    for (int r = 0; r + 1 < rings; ++r) {
-      t.triangles.emplace_back(at(r, j), at(r + 1, j), at(r + 1, j + 1));
-      t.triangles.emplace_back(at(r, j), at(r + 1, j + 1), at(r, j + 1));
+    m.triangles.emplace_back(0, at(1, j), at(1, j + 1));
+    for (int k = 1; k + 1 < rings; ++k) {
+      m.triangles.emplace_back(at(k, j), at(k + 1, j), at(k, j + 1));
+      m.triangles.emplace_back(at(k + 1, j), at(k + 1, j + 1), at(k, j + 1));
     }
-    t.triangles.emplace_back(pole1, at(rings - 1, j + 1), at(rings - 1, j));
+    m.triangles.emplace_back(top, at(rings - 1, j + 1), at(rings - 1, j));
   }
-  // Orient every triangle outwards: away from the nearest point of the axis (a capsule of
-  // radius 1 and axis length 2 for this check).
-  for (auto& tri : t.triangles) {
-    Vector3d v[3];
-    for (int k = 0; k < 3; ++k) {
-      const TemplateVertex& tv = t.vertices[tri[k]];
-      v[k] = tv.p + Vector3d(0, 0, 2.0 * tv.along);
-    }
-    const Vector3d c = (v[0] + v[1] + v[2]) / 3;
-    const Vector3d inside(0, 0, std::clamp(c.z(), 0.0, capsule ? 2.0 : 0.0));
-    if ((v[1] - v[0]).cross(v[2] - v[0]).dot(c - inside) < 0) std::swap(tri[1], tri[2]);
-  }
-  return t;
+  return m;
 }
 
-// The circumscribing factor of the unit UV sphere: 1 / (smallest face-plane distance).
-double circumscribe_factor(const Template& sphere) {
+// The circumscribing factor of a unit-sphere mesh: 1 / (smallest face-plane distance).
+double circumscribe_factor(const TriangleMesh& sphere) {
   double nearest = 1;
   for (const auto& tri : sphere.triangles) {
-    const Vector3d& a = sphere.vertices[tri[0]].p;
-    const Vector3d n = (sphere.vertices[tri[1]].p - a).cross(sphere.vertices[tri[2]].p - a);
+    const Vector3d& a = sphere.vertices[tri[0]];
+    const Vector3d n = (sphere.vertices[tri[1]] - a).cross(sphere.vertices[tri[2]] - a);
     if (n.norm() < 1e-15) continue;
     nearest = std::min(nearest, std::abs(n.normalized().dot(a)));
   }
   return 1 / nearest;
 }
 
-// An orthonormal right-handed frame (u, v, w) with w along `axis`.
-void axis_frame(const Vector3d& axis, Vector3d& u, Vector3d& v, Vector3d& w) {
-  w = axis.norm() > 1e-12 ? Vector3d(axis.normalized()) : Vector3d(0, -1, 0);
-  // The seam of the lathe faces +y-ish when possible: pick the helper least aligned with w.
-  const Vector3d helper = std::abs(w.z()) < 0.9 ? Vector3d::UnitZ() : Vector3d::UnitX();
-  u = helper.cross(w).normalized();
-  v = w.cross(u);
+// The rotation whose y axis runs from `bottom` to `top` and whose z axis is as close to
+// `forward` as that allows, placed at `bottom`.
+Eigen::Isometry3d axis_frame(const Vector3d& bottom, const Vector3d& top, const Vector3d& forward) {
+  const Vector3d y = (top - bottom).normalized();
+  Vector3d z = forward - forward.dot(y) * y;
+  if (z.norm() < 1e-9) z = y.unitOrthogonal();
+  z.normalize();
+  Eigen::Isometry3d f = Eigen::Isometry3d::Identity();
+  f.linear().col(0) = y.cross(z);
+  f.linear().col(1) = y;
+  f.linear().col(2) = z;
+  f.translation() = bottom;
+  return f;
 }
 
-// Appends the capsule template placed between ends a and b with radius r.
-void place_capsule(const Template& t, double k, const Vector3d& a, const Vector3d& b, double r,
-                   TriangleMesh& out) {
-  Vector3d u, v, w;
-  axis_frame(b - a, u, v, w);
-  const int base = static_cast<int>(out.vertices.size());
-  for (const TemplateVertex& tv : t.vertices) {
-    const Vector3d q = k * r * tv.p;
-    out.vertices.push_back(a + tv.along * (b - a) + q.x() * u + q.y() * v + q.z() * w);
+Vector3d mirror_x(const Vector3d& v) {
+  return Vector3d(-v.x(), v.y(), v.z());
+}
+
+// Outward normals of a mesh: area-weighted means of the face normals around each vertex.
+std::vector<Vector3d> mesh_normals(const TriangleMesh& m) {
+  std::vector<Vector3d> n(m.vertices.size(), Vector3d::Zero());
+  for (const auto& t : m.triangles) {
+    const Vector3d f =
+        (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
+    for (int k = 0; k < 3; ++k) n[t[k]] += f;
   }
-  for (const auto& tri : t.triangles)
-    out.triangles.push_back(tri + Eigen::Vector3i::Constant(base));
+  for (Vector3d& v : n)
+    if (v.norm() > 1e-300) v.normalize();
+  return n;
 }
 
-// Appends the sphere template as an ellipsoid: the template axis z becomes y (poles at the crown
-// and under the chin), then the radii scale it.
-void place_ellipsoid(const Template& t, double k, const Vector3d& center, const Vector3d& radii,
-                     TriangleMesh& out) {
-  const int base = static_cast<int>(out.vertices.size());
-  for (const TemplateVertex& tv : t.vertices) {
-    // (x, y, z) -> (x, -z, y) is a rotation (det +1): orientation is kept.
-    const Vector3d p(tv.p.x(), -tv.p.z(), tv.p.y());
-    out.vertices.push_back(center + k * radii.cwiseProduct(p));
+// A profile from samples (height, half-width, half-depth, centre offset) over [h0, h1]: t is
+// the height's fraction of the way, x and z values scaled.
+Sweep profile(std::initializer_list<std::array<double, 4>> rows, double h0, double h1, double sx,
+              double sz) {
+  Sweep s;
+  for (const auto& r : rows) {
+    s.t.push_back((r[0] - h0) / (h1 - h0));
+    s.half_width.push_back(sx * r[1]);
+    s.half_depth.push_back(sz * r[2]);
+    s.offset.push_back(sz * r[3]);
   }
-  for (const auto& tri : t.triangles)
-    out.triangles.push_back(tri + Eigen::Vector3i::Constant(base));
+  s.t.front() = 0;
+  s.t.back() = 1;
+  return s;
 }
 
-// x^p for x >= 0, with the common exponents of the chest (and their halves) done by products.
-double power(double x, double p) {
-  if (p == 1) return x;
-  if (p == 2) return x * x;
-  if (p == 3) return x * x * x;
-  if (p == 4) return (x * x) * (x * x);
-  if (p == 0) return 1;
-  return std::pow(x, p);
+// Nearest distance between a point and a segment's points (for bounding-sphere rejection).
+double segment_point_distance(const Vector3d& a, const Vector3d& b, const Vector3d& p) {
+  const Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 1e-30 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + s * ab - p).norm();
 }
 
-// Beyond this distance (m) from the chest's bounding box, body_distance returns that distance.
-constexpr double kFar = 0.05;
-
-// ((x/a)^2 + (z/c)^2)^(e/2) + |y/b|^e: below 1 inside the superellipsoid with radii (a, b, c).
-double superellipsoid_value(const Vector3d& p, const Vector3d& radii, double e) {
-  const Vector3d q = p.cwiseQuotient(radii);
-  return power(q.x() * q.x() + q.z() * q.z(), 0.5 * e) + power(std::abs(q.y()), e);
-}
-
-// Appends the sphere template as a superellipsoid around y (see body.hpp): each point of the
-// unit sphere keeps its direction around the axis, its radius rho and height h becoming
-// rho^(2/e) and sign(h) |h|^(2/e), so that rho^e + |h|^e = 1. Not circumscribed: the chest
-// collides with nothing.
-void place_superellipsoid(const Template& t, const Vector3d& center, const Vector3d& radii,
-                          double e, TriangleMesh& out) {
-  const int base = static_cast<int>(out.vertices.size());
-  for (const TemplateVertex& tv : t.vertices) {
-    const Vector3d p(tv.p.x(), -tv.p.z(), tv.p.y());
-    const double rho = std::hypot(p.x(), p.z());
-    const double new_rho = std::pow(rho, 2 / e);
-    const double h = std::copysign(std::pow(std::abs(p.y()), 2 / e), p.y());
-    const double scale = rho > 1e-12 ? new_rho / rho : 0.0;
-    out.vertices.push_back(center + radii.cwiseProduct(Vector3d(p.x() * scale, h, p.z() * scale)));
+// Sphere tracing from `eye` towards `x` against a signed distance: is a surface met before
+// `limit` (distance from the eye)?
+template <class Distance>
+bool trace(const Vector3d& eye, const Vector3d& dir, double limit, const Distance& distance) {
+  double s = 0;
+  for (int it = 0; it < 400 && s < limit; ++it) {
+    const double d = distance(eye + s * dir);
+    if (d < 1e-5) return true;
+    // The estimates are first order: step a little short of them.
+    s += std::max(0.9 * d, 1e-4);
   }
-  for (const auto& tri : t.triangles)
-    out.triangles.push_back(tri + Eigen::Vector3i::Constant(base));
-}
-
-// Ericson's closest points of two segments (Real-Time Collision Detection, 5.1.9): the squared
-// distance between p1q1 and p2q2.
-double segment_distance2(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2,
-                         const Vector3d& q2) {
-  const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 1e-18 && e <= 1e-18) return r.squaredNorm();
-  if (a <= 1e-18) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 1e-18) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 1e-18 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return (p1 + d1 * s - (p2 + d2 * t)).squaredNorm();
+  return false;
 }
 
 }  // namespace
 
 BodyParams body_params(const HeadParams& head) {
   BodyParams b;
+  const Vector3d& s = head.shoulder_center;
+  const double sx = head.shoulder_half_width / 0.16, sz = head.shoulder_radius / 0.07;
+  // Heights h above the acromions (the outer ends of the shoulder line, where the trapezius
+  // slope meets the deltoid), 6 cm above shoulder_center (the old shoulder capsule's axis, whose
+  // top the hair rested on). The torso: waist, chest, armpits, the shoulders' round, then the
+  // trapezius slope up into the neck's base, closing inside the neck.
+  const double acromion = s.y() + 0.06;
+  const double h0 = -0.58, h1 = 0.09;
+  b.torso_shape = profile({{h0, 0, 0, 0},
+                           {-0.52, 0.115, 0.085, 0.0},
+                           {-0.40, 0.125, 0.095, 0.012},
+                           {-0.26, 0.138, 0.100, 0.02},
+                           {-0.14, 0.150, 0.095, 0.018},
+                           {-0.07, 0.155, 0.085, 0.01},
+                           {-0.02, 0.158, 0.072, 0.0},
+                           {0.0, 0.152, 0.066, -0.005},
+                           {0.02, 0.128, 0.060, -0.012},
+                           {0.04, 0.085, 0.054, -0.018},
+                           {0.055, 0.058, 0.048, -0.02},
+                           {0.07, 0.042, 0.040, -0.02},
+                           {h1, 0, 0, -0.02}},
+                          h0, h1, sx, sz);
+  b.torso_bottom = Vector3d(0, acromion + h0, s.z());
+  b.torso_length = h1 - h0;
+  // The +x arm, hanging: from below the elbow (the forearm leaves the picture with the torso),
+  // a little out and back, up to the deltoid's dome under the acromion; its inner half stays
+  // inside the torso's shoulder.
+  b.arm_bottom = Vector3d(sx * 0.2, acromion - 0.56, s.z() - 0.03);
+  b.shoulder = Vector3d(sx * 0.17, acromion + 0.004, s.z() - 0.008);
+  // Elbow at 0.45, biceps, deltoid, and a dome 3 cm high.
+  b.arm_shape = profile({{0, 0, 0, 0},
+                         {0.04, 0.031, 0.033, 0},
+                         {0.45, 0.035, 0.038, 0},
+                         {0.68, 0.041, 0.044, 0},
+                         {0.946, 0.047, 0.049, 0},
+                         {1, 0, 0, 0}},
+                        0, 1, sz, sz);
+  // The neck: from inside the torso, flaring where it leaves the trapezius, up into the head.
   const Vector3d& r = head.radii;
+  double neck = 0.051;
   if (head.shape == HeadKind::Ellipsoid) {
     b.neck_top = Vector3d(0, -0.43 * r.y(), -0.13 * r.z());
-    b.neck_radius = 0.65 * r.x();
+    neck = 0.65 * r.x();
   }
-  b.shoulders = Capsule{head.shoulder_center, head.shoulder_half_width, head.shoulder_radius};
-  // The neck ends at the top of the shoulder capsule's core, a little behind its axis; the chest
-  // hangs from the capsule and is a little wider than it.
-  b.neck_bottom = head.shoulder_center + Vector3d(0, 0.015, -0.01);
-  b.chest_center = head.shoulder_center + Vector3d(0, -0.22, 0.0);
-  b.chest_radii = Vector3d(head.shoulder_half_width + 0.04, 0.28, head.shoulder_radius + 0.025);
+  b.neck_bottom = Vector3d(0, acromion, s.z() - 0.015);
+  b.neck_shape = profile({{0, 0, 0, 0},
+                          {0.1, 1.1, 1.1, 0},
+                          {0.4, 1.07, 1.07, 0},
+                          {0.6, 1.02, 1.02, 0},
+                          {0.75, 1.0, 1.0, 0},
+                          {0.9, 1.0, 1.0, 0},
+                          {1, 0, 0, 0}},
+                         0, 1, neck, neck);
+  b.torso_turn = head.torso_turn;
   return b;
 }
 
 void validate(const BodyParams& b) {
-  require(b.slices >= 3 && b.slices <= 1024, "slices", "must be in [3, 1024]");
-  require(b.stacks >= 2 && b.stacks <= 1024, "stacks", "must be in [2, 1024]");
-  require(b.neck_top.allFinite(), "neck_top", "not finite");
-  require(b.neck_bottom.allFinite(), "neck_bottom", "not finite");
-  require(b.shoulders.center.allFinite(), "shoulder_center", "not finite");
-  require(b.chest_center.allFinite(), "chest_center", "not finite");
-  require(b.neck_radius > 0 && std::isfinite(b.neck_radius), "neck_radius", "must be > 0");
-  require(b.shoulders.radius > 0 && std::isfinite(b.shoulders.radius), "shoulder_radius",
-          "must be > 0");
-  require(b.shoulders.half_width >= 0 && std::isfinite(b.shoulders.half_width),
-          "shoulder_half_width", "must be >= 0");
-  require(b.chest_radii.minCoeff() > 0 && b.chest_radii.allFinite(), "chest_radii",
-          "every radius must be > 0");
-  require(b.chest_exponent >= 1 && b.chest_exponent <= 16, "chest_exponent", "must be in [1, 16]");
+  const auto fail = [](const char* field, const std::string& what) {
+    throw std::invalid_argument(std::string(field) + ": " + what);
+  };
+  if (b.slices < 3 || b.slices > 1024) fail("slices", "must be in [3, 1024]");
+  if (b.stacks < 2 || b.stacks > 1024) fail("stacks", "must be in [2, 1024]");
+  if (!(b.torso_turn >= 0 && b.torso_turn <= 1)) fail("torso_turn", "must be in [0, 1]");
+  validate_sweep(b.torso_shape, "torso_shape");
+  validate_sweep(b.arm_shape, "arm_shape");
+  validate_sweep(b.neck_shape, "neck_shape");
+  const std::pair<const Vector3d*, const char*> points[] = {{&b.torso_bottom, "torso_bottom"},
+                                                            {&b.arm_bottom, "arm_bottom"},
+                                                            {&b.shoulder, "shoulder"},
+                                                            {&b.neck_bottom, "neck_bottom"},
+                                                            {&b.neck_top, "neck_top"}};
+  for (const auto& [p, field] : points)
+    if (!p->allFinite()) fail(field, "not finite");
+  if (!(b.torso_length > 0) || !std::isfinite(b.torso_length)) fail("torso_length", "must be > 0");
+  if (!((b.shoulder - b.arm_bottom).norm() > 1e-3))
+    fail("shoulder", "must be away from arm_bottom");
+}
+
+double head_yaw(const HeadPose& pose) {
+  const Vector3d f = pose.rotation * Vector3d::UnitZ();
+  return std::hypot(f.x(), f.z()) > 1e-9 ? std::atan2(f.x(), f.z()) : 0.0;
+}
+
+Eigen::Isometry3d body_frame(const HeadPose& pose, double torso_turn) {
+  Eigen::Isometry3d f = Eigen::Isometry3d::Identity();
+  f.linear() = Eigen::AngleAxisd(torso_turn * head_yaw(pose), Vector3d::UnitY()).toRotationMatrix();
+  f.translation() = pose.position;
+  return f;
+}
+
+BodyShape::BodyShape(const BodyParams& body)
+    : body_((validate_part(body, "body"), body)),
+      neck_(body.neck_shape),
+      torso_(body.torso_shape),
+      arm_(body.arm_shape) {}
+
+const SweepShape& BodyShape::shape(int solid) const {
+  return solid == kNeck ? neck_ : solid == kTorso ? torso_ : arm_;
+}
+
+BodyShape::Placement BodyShape::placement(const HeadPose& pose, int solid) const {
+  const Eigen::Isometry3d body = body_frame(pose, body_.torso_turn);
+  const Vector3d forward = body.linear().col(2);
+  Placement p;
+  switch (solid) {
+    case kNeck: {
+      const Vector3d bottom = body * body_.neck_bottom, top = pose.to_world(body_.neck_top);
+      p.frame = axis_frame(bottom, top, forward);
+      p.length = (top - bottom).norm();
+      break;
+    }
+    case kTorso:
+      p.frame = body * Eigen::Translation3d(body_.torso_bottom);
+      p.length = body_.torso_length;
+      break;
+    default: {
+      const bool plus = solid == kArmPlus;
+      const Vector3d bottom = plus ? body_.arm_bottom : mirror_x(body_.arm_bottom);
+      const Vector3d shoulder = plus ? body_.shoulder : mirror_x(body_.shoulder);
+      p.frame = axis_frame(body * bottom, body * shoulder, forward);
+      p.length = (shoulder - bottom).norm();
+    }
+  }
+  return p;
+}
+
+BodyShape::Posed BodyShape::posed(const HeadPose& pose) const {
+  Posed p;
+  for (int s = 0; s < kSolids; ++s) {
+    p.at[s] = placement(pose, s);
+    p.to_local[s] = p.at[s].frame.inverse();
+  }
+  return p;
+}
+
+double BodyShape::solid_distance(int solid, const Posed& at, const Vector3d& x,
+                                 Vector3d* normal) const {
+  Vector3d n;
+  const double d =
+      shape(solid).distance(at.to_local[solid] * x, at.at[solid].length, normal ? &n : nullptr);
+  if (normal) *normal = at.at[solid].frame.linear() * n;
+  return d;
+}
+
+double BodyShape::distance(const Posed& at, const Vector3d& x, Vector3d* normal) const {
+  double best = std::numeric_limits<double>::infinity();
+  int nearest = -1;
+  for (int solid = 0; solid < kSolids; ++solid) {
+    if (!drawn(solid)) continue;
+    const double d = solid_distance(solid, at, x);
+    if (d < best) {
+      best = d;
+      nearest = solid;
+    }
+  }
+  if (normal && nearest >= 0) solid_distance(nearest, at, x, normal);  // only its normal
+  return best;
+}
+
+bool BodyShape::blocks(const Posed& at, const Vector3d& eye, const Vector3d& x, double shrink,
+                       double ignore) const {
+  const double len = (x - eye).norm();
+  if (len <= ignore) return false;
+  const Vector3d dir = (x - eye) / len;
+  const Vector3d end = eye + (len - ignore) * dir;
+  for (int solid = 0; solid < kSolids; ++solid) {
+    if (!drawn(solid)) continue;
+    const Placement& p = at.at[solid];
+    const Vector3d centre = p.frame * Vector3d(0, 0.5 * p.length, 0);
+    if (segment_point_distance(eye, end, centre) > 0.5 * p.length + shape(solid).max_radius())
+      continue;
+    if (trace(eye, dir, len - ignore,
+              [&](const Vector3d& q) { return solid_distance(solid, at, q) + shrink; }))
+      return true;
+  }
+  return false;
 }
 
 BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
-    : body_((validate_part(body, "body"), body)), shape_(head) {
-  const Template sphere = lathe(body_.slices, body_.stacks, 0);
-  const double k = circumscribe_factor(sphere);
-  const int capsule_stacks = body_.stacks + body_.stacks % 2;
-  const double kc = circumscribe_factor(lathe(body_.slices, capsule_stacks, 0));
-  // Cylinder bands about as long as the cap's quads are tall, so that depth sorting works on
-  // triangles of similar size everywhere.
-  const auto bands = [&](double length, double radius) {
-    return std::clamp(static_cast<int>(std::ceil(length / (M_PI * radius / capsule_stacks))), 1,
-                      256);
-  };
-
-  if (body_.head) {
-    if (head.shape == HeadKind::Ellipsoid)
-      place_ellipsoid(sphere, k, Vector3d::Zero(), head.radii, head_);
-    else
-      head_ = head.mesh;
-  }
-  if (body_.torso) {
-    const Capsule& s = body_.shoulders;
-    const Vector3d half(s.half_width, 0, 0);
-    const Template capsule = lathe(body_.slices, capsule_stacks, bands(2 * s.half_width, s.radius));
-    place_capsule(capsule, kc, s.center - half, s.center + half, s.radius, torso_);
-    const std::size_t before = torso_.triangles.size();
-    place_superellipsoid(sphere, body_.chest_center, body_.chest_radii, body_.chest_exponent,
-                         torso_);
-    chest_triangles_ = torso_.triangles.size() - before;
-  }
-  if (body_.neck) {
-    const double length =
-        (body_.neck_top - body_.neck_bottom).norm();  // at rest (the head's pose moves the top)
-    const Template capsule = lathe(body_.slices, capsule_stacks, bands(length, body_.neck_radius));
-    for (const TemplateVertex& tv : capsule.vertices) {
-      neck_offset_.push_back(kc * tv.p);
-      neck_along_.push_back(tv.along);
+    : shape_(body), head_shape_(head) {
+  const BodyParams& b = shape_.params();
+  if (b.head && b.face) face_ = face_lines(head_shape_);
+  if (b.head) {
+    if (head.shape == HeadKind::Ellipsoid) {
+      const TriangleMesh sphere = uv_sphere(b.slices, b.stacks);
+      const double k = circumscribe_factor(sphere);
+      for (const Vector3d& p : sphere.vertices) {
+        head_.vertices.push_back(k * head.radii.cwiseProduct(p));
+        head_.normals.push_back(p.cwiseQuotient(head.radii).normalized());
+      }
+      head_.triangles = sphere.triangles;
+    } else {
+      head_.vertices = head.mesh.vertices;
+      head_.triangles = head.mesh.triangles;
+      head_.normals = mesh_normals(head.mesh);
     }
-    neck_triangles_ = capsule.triangles;
+  }
+  // Sweeps get rings about as far apart as their vertices around: triangles of similar shape.
+  const auto build = [&](int solid, double length, int slices) {
+    const SweepShape& s = shape_.shape(solid);
+    const double spacing = 2 * M_PI * s.max_radius() / slices;
+    return sweep_mesh(s, length, slices, spacing);
+  };
+  const int limb_slices = std::max(3, b.slices / 2);
+  if (b.torso) {
+    for (auto [solid, length, slices, out] :
+         {std::make_tuple(int(BodyShape::kTorso), b.torso_length, b.slices, &torso_),
+          std::make_tuple(int(BodyShape::kArmPlus), (b.shoulder - b.arm_bottom).norm(), limb_slices,
+                          &arm_plus_)}) {
+      const SweepMesh m = build(solid, length, slices);
+      const SweepShape& s = shape_.shape(solid);
+      for (std::size_t i = 0; i < m.t.size(); ++i) {
+        out->vertices.push_back(s.point(m.t[i], m.theta[i], length));
+        out->normals.push_back(s.normal(m.t[i], m.theta[i], length));
+      }
+      out->triangles = m.triangles;
+    }
+  }
+  if (b.neck) {
+    // The neck's length changes with the pose: its mesh is laid out for its rest length.
+    const double rest = (b.neck_top - b.neck_bottom).norm();
+    neck_ = build(BodyShape::kNeck, rest, limb_slices);
   }
 }
 
-std::vector<Eigen::Matrix3d> BodyModel::world_triangles(
-    const HeadPose& pose, std::vector<int>* part, std::vector<Eigen::Matrix3d>* normals) const {
-  std::vector<Eigen::Matrix3d> out;
-  if (part) part->clear();
-  if (normals) normals->clear();
-  std::vector<Vector3d> vertex_normal;
-  const auto add = [&](const std::vector<Vector3d>& v, const std::vector<Eigen::Vector3i>& tris,
-                       int which) {
-    if (normals) {
-      // Area-weighted mean of the face normals around each vertex.
-      vertex_normal.assign(v.size(), Vector3d::Zero());
-      for (const auto& t : tris) {
-        const Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
-        for (int k = 0; k < 3; ++k) vertex_normal[t[k]] += n;
-      }
-      for (Vector3d& n : vertex_normal)
-        if (n.norm() > 1e-300) n.normalize();
-    }
-    for (const auto& t : tris) {
-      Eigen::Matrix3d tri;
-      tri << v[t[0]], v[t[1]], v[t[2]];
-      out.push_back(tri);
-      if (part) part->push_back(which);
-      if (normals) {
-        tri << vertex_normal[t[0]], vertex_normal[t[1]], vertex_normal[t[2]];
-        normals->push_back(tri);
-      }
-    }
+std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3d& eye) const {
+  const BodyParams& b = shape_.params();
+  std::vector<BodySurface> out;
+  const auto placed = [&](int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
+    BodySurface s;
+    s.part = part;
+    s.solid = solid;
+    s.vertices.reserve(m.vertices.size());
+    for (const Vector3d& v : m.vertices) s.vertices.push_back(frame * v);
+    for (const Vector3d& n : m.normals) s.normals.push_back(frame.linear() * n);
+    s.triangles = m.triangles;
+    return s;
   };
-  out.reserve(torso_.triangles.size() + neck_triangles_.size() + head_.triangles.size());
-  std::vector<Vector3d> world;
-  // Painter's ties are broken by this order: torso, neck, head.
-  world.resize(torso_.vertices.size());
-  for (std::size_t i = 0; i < world.size(); ++i) world[i] = torso_.vertices[i] + pose.position;
-  add(world, torso_.triangles, kBodyTorso);
-  if (!neck_along_.empty()) {
-    const Vector3d top = pose.to_world(body_.neck_top);
-    const Vector3d bottom = pose.position + body_.neck_bottom;
-    Vector3d u, v, w;
-    axis_frame(bottom - top, u, v, w);
-    const double r = body_.neck_radius;
-    world.resize(neck_offset_.size());
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      const Vector3d& q = neck_offset_[i];
-      world[i] = top + neck_along_[i] * (bottom - top) + r * (q.x() * u + q.y() * v + q.z() * w);
+  if (b.torso) {
+    const BodyShape::Placement torso = shape_.placement(pose, BodyShape::kTorso);
+    BodyShape::Placement arm[2] = {shape_.placement(pose, BodyShape::kArmPlus),
+                                   shape_.placement(pose, BodyShape::kArmMinus)};
+    // An arm is behind the torso when its middle is farther from the eye than the torso's axis
+    // at the same height.
+    bool behind[2];
+    for (int k = 0; k < 2; ++k) {
+      const Vector3d mid = arm[k].frame * Vector3d(0, 0.5 * arm[k].length, 0);
+      const Vector3d local = torso.frame.inverse() * mid;
+      const Vector3d axis = torso.frame * Vector3d(0, local.y(), 0);
+      behind[k] = (mid - eye).norm() > (axis - eye).norm();
     }
-    add(world, neck_triangles_, kBodyNeck);
+    for (int k = 0; k < 2; ++k)
+      if (behind[k])
+        out.push_back(placed(kBodyArm, BodyShape::kArmPlus + k, arm_plus_, arm[k].frame));
+    out.push_back(placed(kBodyTorso, BodyShape::kTorso, torso_, torso.frame));
+    for (int k = 0; k < 2; ++k)
+      if (!behind[k])
+        out.push_back(placed(kBodyArm, BodyShape::kArmPlus + k, arm_plus_, arm[k].frame));
   }
-  world.resize(head_.vertices.size());
-  for (std::size_t i = 0; i < world.size(); ++i) world[i] = pose.to_world(head_.vertices[i]);
-  add(world, head_.triangles, kBodyHead);
+  if (b.neck) {
+    const BodyShape::Placement at = shape_.placement(pose, BodyShape::kNeck);
+    const SweepShape& s = shape_.shape(BodyShape::kNeck);
+    Mesh m;
+    for (std::size_t i = 0; i < neck_.t.size(); ++i) {
+      m.vertices.push_back(s.point(neck_.t[i], neck_.theta[i], at.length));
+      m.normals.push_back(s.normal(neck_.t[i], neck_.theta[i], at.length));
+    }
+    m.triangles = neck_.triangles;
+    out.push_back(placed(kBodyNeck, BodyShape::kNeck, m, at.frame));
+  }
+  if (b.head) {
+    Eigen::Isometry3d head = Eigen::Isometry3d::Identity();
+    head.linear() = pose.rotation.toRotationMatrix();
+    head.translation() = pose.position;
+    out.push_back(placed(kBodyHead, -1, head_, head));
+  }
   return out;
 }
 
-bool BodyModel::inside_other(const HeadPose& pose, const Vector3d& x, int solid) const {
-  if (solid != 0 && body_.head && shape_.distance(pose.to_local(x)) < 0) return true;
-  if (solid != 1 && body_.neck) {
-    const double r = body_.neck_radius;
-    if (segment_distance2(x, x, pose.to_world(body_.neck_top), pose.position + body_.neck_bottom) <
-        r * r)
-      return true;
-  }
-  if (!body_.torso) return false;
-  const Vector3d b = x - pose.position;  // body frame
-  if (solid != 2 && body_.shoulders.distance(b, nullptr) < 0) return true;
-  if (solid != 3 &&
-      superellipsoid_value(b - body_.chest_center, body_.chest_radii, body_.chest_exponent) < 1)
-    return true;
-  return false;
+double BodyModel::distance(const HeadPose& pose, const BodySurface& s, const Vector3d& x) const {
+  if (s.solid < 0) return head_shape_.distance(pose.to_local(x));
+  return shape_.solid_distance(s.solid, shape_.posed(pose), x);
+}
+
+std::vector<FaceStroke> BodyModel::face(const HeadPose& pose, const Camera& camera) const {
+  // The lines lie on the head: its own surface within 3 mm of a sample does not hide it.
+  return project_face(face_, pose, camera,
+                      [&](const Vector3d& x) { return blocks(pose, camera.eye, x, 0.003); });
+}
+
+bool BodyModel::blocks(const HeadPose& pose, const Vector3d& eye, const Vector3d& x,
+                       double ignore) const {
+  if (shape_.blocks(pose, eye, x, 0, ignore)) return true;
+  if (!params().head) return false;
+  const double len = (x - eye).norm();
+  if (len <= ignore) return false;
+  return trace(eye, (x - eye) / len, len - ignore,
+               [&](const Vector3d& p) { return head_shape_.distance(pose.to_local(p)); });
 }
 
 ProjectedBody BodyModel::project(const HeadPose& pose, const Camera& camera,
                                  const Vector3d& light_dir) const {
   const Vector3d light =
       light_dir.norm() > 1e-12 ? Vector3d(light_dir.normalized()) : Vector3d::Zero();
-  std::vector<int> part;
-  std::vector<Eigen::Matrix3d> normals;
-  const std::vector<Eigen::Matrix3d> tris = world_triangles(pose, &part, &normals);
-  // world_triangles lists the shoulders, the chest, the neck, then the head.
-  const std::size_t shoulders_end = body_.torso ? torso_.triangles.size() - chest_triangles_ : 0;
-  const auto solid_of = [&](std::size_t i) {
-    return part[i] == kBodyHead ? 0 : part[i] == kBodyNeck ? 1 : i < shoulders_end ? 2 : 3;
-  };
-  ProjectedBody out;
-  out.triangles.reserve(tris.size() / 2 + 1);
-  constexpr double kNear = 1e-3;
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    const Eigen::Matrix3d& t = tris[i];
-    const Vector3d a = t.col(0), b = t.col(1), c = t.col(2);
-    if ((a - camera.eye).dot(camera.forward) < kNear ||
-        (b - camera.eye).dot(camera.forward) < kNear ||
-        (c - camera.eye).dot(camera.forward) < kNear)
-      continue;
-    const Vector3d n = (b - a).cross(c - a);
-    if (!(n.dot(a - camera.eye) < 0)) continue;  // back-facing, edge-on or degenerate
-    const int solid = solid_of(i);
-    if (inside_other(pose, a, solid) && inside_other(pose, b, solid) &&
-        inside_other(pose, c, solid))
-      continue;
-    BodyTriangle bt;
-    for (int k = 0; k < 3; ++k) bt.p[k] = camera.project(t.col(k));
-    bt.depth = ((a + b + c) / 3 - camera.eye).norm();
-    const auto half_lambert = [&](const Vector3d& normal) {
-      return static_cast<float>(std::clamp(0.5 * (1 + normal.dot(light)), 0.0, 1.0));
-    };
-    bt.shade = half_lambert(n.normalized());
-    for (int k = 0; k < 3; ++k) bt.vertex_shade[k] = half_lambert(normals[i].col(k));
-    bt.part = part[i];
-    out.triangles.push_back(bt);
+  const std::vector<BodySurface> world = surfaces(pose, camera.eye);
+  // Each solid's signed distance, posed once for all the vertices of the later surfaces.
+  const BodyShape::Posed posed = shape_.posed(pose);
+  std::vector<std::function<double(const Vector3d&)>> solid;
+  for (const BodySurface& s : world) {
+    if (s.solid < 0)
+      solid.push_back([&](const Vector3d& x) { return head_shape_.distance(pose.to_local(x)); });
+    else
+      solid.push_back(
+          [&, k = s.solid](const Vector3d& x) { return shape_.solid_distance(k, posed, x); });
   }
-  // Back to front; equal depths keep the build order (stable), so the result is deterministic.
-  std::stable_sort(out.triangles.begin(), out.triangles.end(),
-                   [](const BodyTriangle& x, const BodyTriangle& y) { return x.depth > y.depth; });
+  ProjectedBody out;
+  constexpr double kNear = 1e-3;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const BodySurface& s = world[i];
+    ProjectedSurface p;
+    p.part = s.part;
+    const std::size_t n = s.vertices.size();
+    std::vector<bool> in_front(n);
+    p.pixel.resize(n);
+    p.shade.resize(n);
+    p.clearance.assign(n, std::numeric_limits<float>::infinity());
+    for (std::size_t v = 0; v < n; ++v) {
+      const Vector3d& x = s.vertices[v];
+      in_front[v] = (x - camera.eye).dot(camera.forward) >= kNear;
+      p.pixel[v] = camera.project(x);
+      p.shade[v] = float(std::clamp(0.5 * (1 + s.normals[v].dot(light)), 0.0, 1.0));
+      for (std::size_t j = 0; j < i; ++j)
+        p.clearance[v] = std::min(p.clearance[v], float(solid[j](x)));
+    }
+    for (const Eigen::Vector3i& t : s.triangles) {
+      if (!in_front[t[0]] || !in_front[t[1]] || !in_front[t[2]]) continue;
+      if (p.clearance[t[0]] <= 0 && p.clearance[t[1]] <= 0 && p.clearance[t[2]] <= 0) continue;
+      const Eigen::Vector2d e1 = p.pixel[t[1]] - p.pixel[t[0]], e2 = p.pixel[t[2]] - p.pixel[t[0]];
+      if (e1.x() * e2.y() - e1.y() * e2.x() < 0) p.triangles.push_back(t);
+    }
+    out.surfaces.push_back(std::move(p));
+  }
   return out;
 }
 
 ProjectedBody project_body(const HeadPose& pose, const HeadGeometry& head, const BodyParams& body,
                            const CameraParams& camera, const Vector3d& light_dir) {
   return BodyModel(head, body).project(pose, Camera::look_at(camera), light_dir);
-}
-
-double body_distance(const BodyParams& body, const HeadPose& pose, const Vector3d& x,
-                     Vector3d* normal) {
-  double best = std::numeric_limits<double>::infinity();
-  Vector3d n = Vector3d::UnitY();
-  if (body.neck) {
-    const Vector3d a = pose.to_world(body.neck_top), b = pose.position + body.neck_bottom;
-    const Vector3d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double s = len2 > 1e-30 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    const Vector3d off = x - (a + s * ab);
-    const double len = off.norm();
-    best = len - body.neck_radius;
-    n = len > 1e-12 ? Vector3d(off / len) : Vector3d::UnitY();
-  }
-  if (body.torso) {
-    const double e = body.chest_exponent;
-    const Vector3d& r = body.chest_radii;
-    const Vector3d b = x - pose.position - body.chest_center;
-    // Far from the chest, the distance to its bounding box is a cheap lower bound: callers only
-    // need the distance when it is small.
-    const double box = (b.cwiseAbs() - r).cwiseMax(0.0).norm();
-    if (box > kFar) {
-      if (box < best) {
-        best = box;
-        n = (b.cwiseAbs() - r).cwiseMax(0.0).cwiseProduct(b.cwiseSign()).normalized();
-      }
-    } else {
-      const Vector3d q = b.cwiseQuotient(r);
-      const double rho2 = q.x() * q.x() + q.z() * q.z(), ay = std::abs(q.y());
-      const double g = power(rho2, 0.5 * e) + power(ay, e);
-      // grad_q of g, then of F = g^(1/e) with respect to the world point (divide by the radii).
-      const double radial = rho2 > 1e-300 ? e * power(rho2, 0.5 * e - 1) : 0.0;
-      const Vector3d dg(radial * q.x(), ay > 0 ? e * power(ay, e - 1) * (q.y() > 0 ? 1 : -1) : 0,
-                        radial * q.z());
-      double d = -r.minCoeff();
-      Vector3d nc = Vector3d::UnitY();
-      if (g > 1e-300) {
-        const double f = std::pow(g, 1 / e);
-        const Vector3d grad = (f / (e * g)) * dg.cwiseQuotient(r);
-        const double gn = grad.norm();
-        if (gn > 1e-12) {
-          d = (f - 1) / gn;
-          nc = grad / gn;
-        }
-      }
-      if (d < best) {
-        best = d;
-        n = nc;
-      }
-    }
-  }
-  if (normal) *normal = n;
-  return best;
-}
-
-bool body_blocks(const BodyParams& body, const HeadPose& pose, const Vector3d& eye,
-                 const Vector3d& x, double shrink, double ignore) {
-  const Vector3d d = x - eye;
-  const double len = d.norm();
-  if (len <= ignore) return false;
-  const Vector3d end = eye + d * ((len - ignore) / len);
-  const auto capsule = [&](const Vector3d& a, const Vector3d& b, double r) {
-    const double rr = std::max(r - shrink, 1e-6);
-    return segment_distance2(eye, end, a, b) < rr * rr;
-  };
-  if (body.neck &&
-      capsule(pose.to_world(body.neck_top), pose.position + body.neck_bottom, body.neck_radius))
-    return true;
-  if (!body.torso) return false;
-  const Capsule& s = body.shoulders;
-  const Vector3d c = pose.position + s.center, half(s.half_width, 0, 0);
-  if (capsule(c - half, c + half, s.radius)) return true;
-  const Vector3d radii = (body.chest_radii - Vector3d::Constant(shrink)).cwiseMax(1e-6);
-  const Vector3d centre = pose.position + body.chest_center;
-  // The superellipsoid's inside function is convex, hence unimodal along the segment: a golden
-  // section search finds its minimum (to 1e-9 of the segment, far below a millimetre).
-  const auto value = [&](double f) {
-    return superellipsoid_value(eye + f * (end - eye) - centre, radii, body.chest_exponent);
-  };
-  double lo = 0, hi = 1;
-  const double g = 0.5 * (std::sqrt(5.0) - 1);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = value(x1), f2 = value(x2);
-  for (int it = 0; it < 44 && f1 >= 1 && f2 >= 1; ++it) {
-    if (f1 < f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = value(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = value(x2);
-    }
-  }
-  return std::min({f1, f2, value(0), value(1)}) < 1;
 }
 
 }  // namespace wisp::sim

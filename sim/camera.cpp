@@ -56,7 +56,7 @@ Projector::Projector(const HeadGeometry& head, const CameraParams& camera,
   if (!(options_.light_dir.norm() > 1e-12) || !options_.light_dir.allFinite())
     throw std::invalid_argument("light.direction: must be a finite non-zero vector");
   options_.light_dir.normalize();
-  if (options_.body) validate_part(*options_.body, "body");
+  if (options_.body) body_ = std::make_unique<const BodyShape>(*options_.body);
   Bullet& b = *bullet_;
   if (head.shape == HeadKind::Ellipsoid) {
     const btVector3 centre(0, 0, 0);
@@ -99,9 +99,10 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
 
   // Is the ray from the eye to `x` blocked by `obj` (or the body, shrunk by `shrink`) clearly
   // before reaching x?
-  const BodyParams* body = options_.body.get();
+  std::optional<BodyShape::Posed> body;
+  if (body_) body = body_->posed(frame.head);
   const auto blocked = [&](btCollisionObject& obj, const Vector3d& x, double dist, double shrink) {
-    if (body && body_blocks(*body, frame.head, camera_.eye, x, shrink, hysteresis_)) return true;
+    if (body && body_->blocks(*body, camera_.eye, x, shrink, hysteresis_)) return true;
     const btTransform to(btQuaternion::getIdentity(), bt(x));
     btCollisionWorld::ClosestRayResultCallback cb(from.getOrigin(), to.getOrigin());
     btCollisionWorld::rayTestSingle(from, to, &obj, obj.getCollisionShape(),

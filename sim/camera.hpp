@@ -9,8 +9,9 @@
 // becomes hidden only when the ray is blocked by the head shrunk by `hysteresis`, a hidden one
 // becomes visible only when the ray clears the full head; in between it keeps its state.
 //
-// With ProjectorOptions::body, the drawn neck and torso (sim/body.hpp) hide strands too, with the
-// same hysteresis (analytic capsules and ellipsoid, shrunk by `hysteresis` for the inner test).
+// With ProjectorOptions::body, the drawn neck, torso and arms (sim/body.hpp) hide strands too,
+// with the same hysteresis (sphere tracing on their analytic distances, shrunk by `hysteresis`
+// for the inner test).
 // Every frame carries ProjectorOptions::light_dir (the scene's light) for shading.
 #pragma once
 
@@ -38,10 +39,11 @@ struct Camera {
 };
 
 struct BodyParams;
+class BodyShape;
 
 struct ProjectorOptions {
   Eigen::Vector3d light_dir = default_light_dir();  // copied into every frame (normalised)
-  std::shared_ptr<const BodyParams> body;           // occluding neck and torso; null: none
+  std::shared_ptr<const BodyParams> body;           // occluding neck, torso, arms; null: none
 };
 
 class Projector {
@@ -63,6 +65,7 @@ class Projector {
   double hysteresis_;
   ProjectorOptions options_;
   std::unique_ptr<Bullet> bullet_;
+  std::unique_ptr<const BodyShape> body_;
   std::vector<std::vector<std::uint8_t>> visible_;
 };
 

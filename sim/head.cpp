@@ -44,14 +44,6 @@ Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3
 
 }  // namespace
 
-double Capsule::distance(const Vector3d& p, Vector3d* normal) const {
-  Vector3d q = p - center;
-  q.x() -= std::clamp(q.x(), -half_width, half_width);
-  const double len = q.norm();
-  if (normal) *normal = len > 1e-12 ? Vector3d(q / len) : Vector3d::UnitY();
-  return len - radius;
-}
-
 HeadShape::HeadShape(HeadGeometry geometry) : geometry_(std::move(geometry)) {
   if (geometry_.shape == HeadKind::Ellipsoid) {
     const Vector3d& r = geometry_.radii;

@@ -37,15 +37,6 @@ struct HeadPose {
   }
 };
 
-// A capsule along x (the shoulders), in the body frame: the head's position without its rotation,
-// because the head turns on the neck while the shoulders do not.
-struct Capsule {
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double half_width = 0;
-  double radius = 0;
-  double distance(const Eigen::Vector3d& p, Eigen::Vector3d* normal) const;
-};
-
 class HeadShape {
  public:
   // Throws std::invalid_argument for non-positive radii, an empty or open mesh.

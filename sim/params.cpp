@@ -26,6 +26,7 @@ void validate(const HeadParams& h) {
   require(h.shoulder_center.allFinite(), "shoulder_center", "not a finite vector");
   require(non_negative(h.shoulder_half_width), "shoulder_half_width", "must be >= 0");
   require(positive(h.shoulder_radius), "shoulder_radius", "must be positive");
+  require(h.torso_turn >= 0 && h.torso_turn <= 1, "torso_turn", "must be in [0, 1]");
 }
 
 void validate(const HairParams& h) {

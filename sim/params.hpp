@@ -33,10 +33,13 @@ struct HeadParams {
   std::filesystem::path mesh;                  // OBJ file for shape Mesh (absolute once loaded)
   double mesh_scale = 1.0;                     // OBJ units to metres
   Eigen::Vector3d mesh_offset = Eigen::Vector3d::Zero();  // added after scaling (m)
-  bool shoulders = false;  // strands also collide with the body: shoulder capsule, neck, chest
-  Eigen::Vector3d shoulder_center{0.0, -0.25, -0.02};  // capsule centre, body frame (m)
-  double shoulder_half_width = 0.16;                   // capsule half length along x (m)
-  double shoulder_radius = 0.07;                       // capsule radius (m)
+  bool shoulders = false;  // strands also collide with the body: neck, torso and upper arms
+  // The figure under the head (sim/body.hpp), in the body frame: the head's position turned by
+  // `torso_turn` of its yaw.
+  Eigen::Vector3d shoulder_center{0.0, -0.25, -0.02};  // middle of the shoulder line (m)
+  double shoulder_half_width = 0.16;  // from there to each shoulder joint, along x (m)
+  double shoulder_radius = 0.07;      // half depth of the shoulders (m); scales depths and arms
+  double torso_turn = 0.35;           // the torso's share of the head's yaw, in [0, 1]
 };
 
 // Where guides come from: generated, or read from our JSON strand format or a Yuksel .hair file.

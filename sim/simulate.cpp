@@ -15,12 +15,8 @@ namespace wisp::sim {
 using Eigen::Vector3d;
 
 Environment::Environment(const SimSetup& setup)
-    : head_(setup.head),
-      motion_(setup.motion),
-      shoulders_(setup.shoulders),
-      body_(setup.body),
-      params_(setup.sim) {
-  if (body_) validate_part(*body_, "body");
+    : head_(setup.head), motion_(setup.motion), params_(setup.sim) {
+  if (setup.body) body_.emplace(*setup.body);
   // Three incommensurate sines per gust signal, with seeded phases: smooth, never periodic
   // within a shot, identical for a given seed.
   Rng rng(params_.wind.seed);
@@ -46,17 +42,14 @@ double Environment::distance(const Vector3d& x, const HeadPose& pose, Vector3d* 
   Vector3d n;
   double d = head_.distance(pose.to_local(x), &n);
   if (normal) *normal = pose.rotation * n;
-  if (shoulders_) {
-    Vector3d ns;
-    const double ds = shoulders_->distance(x - pose.position, &ns);
-    if (ds < d) {
-      d = ds;
-      if (normal) *normal = ns;
-    }
-  }
   if (body_) {
+    if (!posed_ || posed_pose_.position != pose.position ||
+        posed_pose_.rotation.coeffs() != pose.rotation.coeffs()) {
+      posed_ = body_->posed(pose);
+      posed_pose_ = pose;
+    }
     Vector3d nb;
-    const double db = body_distance(*body_, pose, x, &nb);
+    const double db = body_->distance(*posed_, x, &nb);
     if (db < d) {
       d = db;
       if (normal) *normal = nb;
@@ -86,8 +79,7 @@ SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, con
   setup.head.radii = head.radii;
   setup.head.mesh = mesh;
   if (head.shoulders) {
-    setup.shoulders = Capsule{head.shoulder_center, head.shoulder_half_width, head.shoulder_radius};
-    setup.body = body_params(head);  // the drawn neck and chest collide too
+    setup.body = body_params(head);  // the drawn neck, torso and arms
   }
   setup.motion = motion_keys(motion);
   setup.duration = motion.duration;

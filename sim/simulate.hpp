@@ -18,15 +18,14 @@ namespace wisp::sim {
 
 struct SimSetup {
   HeadGeometry head;
-  std::optional<Capsule> shoulders;  // body frame (see head.hpp)
-  std::optional<BodyParams> body;    // neck and chest colliders (sim/body.hpp body_distance)
-  std::vector<Keyframe> motion;      // expanded keyframes (sim/motion.hpp)
-  double duration = 4.0;             // seconds
-  std::vector<Polyline> rest;        // guides at rest, head-local metres, root first
+  std::optional<BodyParams> body;  // neck, torso and arm colliders (sim/body.hpp BodyShape)
+  std::vector<Keyframe> motion;    // expanded keyframes (sim/motion.hpp)
+  double duration = 4.0;           // seconds
+  std::vector<Polyline> rest;      // guides at rest, head-local metres, root first
   SimParams sim;
 };
 
-// Everything but the guides: head (with `mesh` for shape Mesh), shoulders, motion, parameters.
+// Everything but the guides: head (with `mesh` for shape Mesh), body, motion, parameters.
 // Throws std::invalid_argument naming the part and field ("sim.fps: ...") for bad parameters.
 SimSetup make_base_setup(const HeadParams& head, const MotionParams& motion, const SimParams& sim,
                          const TriangleMesh& mesh = {});

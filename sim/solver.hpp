@@ -1,5 +1,5 @@
 // The strand solvers behind sim.model, and the environment they share: the moving head (pose,
-// signed distance), the shoulders, gravity and gusty wind. Each solver owns its state and
+// signed distance), the body under it, gravity and gusty wind. Each solver owns its state and
 // advances every guide by one fixed physics step; simulate.cpp drives them and samples frames.
 //  - dftl: our Dynamic Follow-The-Leader solver (sim/solver_dftl.cpp), the default;
 //  - featherstone: one btMultiBody chain per guide (sim/solver_featherstone.cpp);
@@ -27,7 +27,7 @@ class Environment {
   // Wind velocity at world point x and time t: the mean wind plus gusts that travel along it.
   Eigen::Vector3d wind(double t, const Eigen::Vector3d& x) const;
 
-  // Signed distance of world point x to the head, shoulders, neck and chest (the nearest), with
+  // Signed distance of world point x to the head, neck, torso and arms (the nearest), with
   // the outward unit normal in world space.
   double distance(const Eigen::Vector3d& x, const HeadPose& pose, Eigen::Vector3d* normal) const;
 
@@ -37,8 +37,10 @@ class Environment {
  private:
   HeadShape head_;
   HeadMotion motion_;
-  std::optional<Capsule> shoulders_;
-  std::optional<BodyParams> body_;
+  std::optional<BodyShape> body_;
+  // The body posed for the last pose asked about: the solvers ask for one pose many times.
+  mutable HeadPose posed_pose_;
+  mutable std::optional<BodyShape::Posed> posed_;
   SimParams params_;
   double gust_phase_[3], gust_rate_[3];
 };

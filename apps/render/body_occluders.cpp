@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
-#include <numeric>
 
 #include "sim/ray_triangle.hpp"
 
@@ -15,29 +13,6 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-// Triangles grouped into closed surfaces: triangles sharing a vertex (exactly the same point,
-// as the model emits them) belong together.
-std::vector<std::vector<int>> surfaces(const std::vector<Eigen::Matrix3d>& tris) {
-  std::vector<int> parent(tris.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  std::map<std::array<double, 3>, int> owner;
-  for (int t = 0; t < int(tris.size()); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const Vector3d v = tris[t].col(c);
-      auto [it, fresh] = owner.insert({{v.x(), v.y(), v.z()}, t});
-      if (!fresh) parent[find(t)] = find(it->second);
-    }
-  std::map<int, std::vector<int>> groups;
-  for (int t = 0; t < int(tris.size()); ++t) groups[find(t)].push_back(t);
-  std::vector<std::vector<int>> out;
-  for (auto& [_, g] : groups) out.push_back(std::move(g));
-  return out;
-}
 
 // Convex hull (Andrew's monotone chain), counter-clockwise in (x, y).
 std::vector<Vector2d> convex_hull(std::vector<Vector2d> p) {
@@ -115,24 +90,23 @@ struct Surface {
 
 std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const sim::HeadPose& pose,
                                              const sim::Camera& camera, double bias) {
-  const std::vector<Eigen::Matrix3d> tris = body.world_triangles(pose);
   std::vector<vector::Occluder> out;
-  for (const std::vector<int>& group : surfaces(tris)) {
+  for (const sim::BodySurface& surface : body.surfaces(pose, camera.eye)) {
     auto s = std::make_shared<Surface>();
     s->camera = camera;
     s->bias = bias;
     std::vector<Vector2d> points;
     bool behind = false;
-    for (int t : group) {
-      s->world.push_back(tris[t]);
-      std::array<Vector2d, 3> px;
-      for (int c = 0; c < 3; ++c) {
-        behind |= (Vector3d(tris[t].col(c)) - camera.eye).dot(camera.forward) <= 1e-3;
-        px[c] = camera.project(tris[t].col(c));
-        points.push_back(px[c]);
-        s->box.extend(px[c]);
-      }
-      s->pixel.push_back(px);
+    for (const Vector3d& v : surface.vertices) {
+      behind |= (v - camera.eye).dot(camera.forward) <= 1e-3;
+      points.push_back(camera.project(v));
+      s->box.extend(points.back());
+    }
+    for (const Eigen::Vector3i& t : surface.triangles) {
+      Eigen::Matrix3d tri;
+      tri << surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]];
+      s->world.push_back(tri);
+      s->pixel.push_back({points[t[0]], points[t[1]], points[t[2]]});
     }
     // A surface reaching behind the eye has no meaningful silhouette; it is left out.
     if (behind || points.size() < 3) continue;

@@ -1,10 +1,10 @@
 // The head and body as occluders of the hair (vector::Occluder): hair that passes behind them is
 // cut exactly along their silhouettes by the arrangement, instead of being trimmed at whole
-// strand samples. Each closed surface of the body model (head, neck, shoulders, chest: its
-// connected components) becomes one occluder: its silhouette is the convex hull of its projected
-// vertices (the parts are convex solids; a mesh head is bounded by its hull), and its depth at a
-// pixel is where the eye ray through the pixel first meets its triangles (+infinity on a miss,
-// so a hull that bulges past the surface hides nothing).
+// strand samples. Each closed surface of the body model (head, neck, torso, arms) becomes one
+// occluder: its silhouette is the convex hull of its projected vertices (which bounds the
+// torso's concave trapezius slopes, or a mesh head, from outside), and its depth at a pixel is
+// where the eye ray through the pixel first meets its triangles (+infinity on a miss, so a hull
+// that bulges past the surface hides nothing).
 #pragma once
 
 #include <vector>

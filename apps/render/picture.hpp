@@ -1,5 +1,6 @@
-// A finished frame as layers of plain geometry, in pixels, back to front: background, body,
-// the smooth-shaded hair clipped by the hair mask, ink strokes. The same picture is written as
+// A finished frame as layers of plain geometry, in pixels, back to front: background, body
+// (skin tones, then the face's lines), the smooth-shaded hair clipped by the hair mask, ink
+// strokes. The same picture is written as
 // a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
 // image clipped by the silhouette, or flat per-wisp gradients).
 #pragma once
@@ -20,9 +21,14 @@ namespace wisp::render {
 
 using Rgb = Eigen::Vector3f;  // [0,1]
 
-struct BodyPolygon {
-  std::vector<Eigen::Vector2d> points;
+// A region of one flat skin tone on one body surface (apps/render/body_paths.hpp): closed cubic
+// Bezier loops (3k+1 control points each, the last equal to the first), filled together with the
+// nonzero winding rule (holes run the other way round).
+struct BodyPath {
+  std::vector<std::vector<Eigen::Vector2d>> loops;
   Rgb color = Rgb::Zero();
+  int part = 0;         // sim::BodyPart
+  bool shadow = false;  // the shadow tone, drawn over its surface's lit fill
 };
 
 // A variable-width stroke: the polyline's width at each point, in pixels.
@@ -62,10 +68,11 @@ struct FlatRegion {
 struct FramePicture {
   int width = 0, height = 0;
   Rgb background{1, 1, 1};
-  std::vector<BodyPolygon> body;  // back to front
-  diffusion::Image hair;          // full-frame smooth shading (may be empty: no hair)
-  vector::HairMask mask;          // where the hair image shows
-  std::vector<InkStroke> ink;     // on top of everything
+  std::vector<BodyPath> body;   // back to front
+  std::vector<InkStroke> face;  // facial features, drawn on the body (under the hair)
+  diffusion::Image hair;        // full-frame smooth shading (may be empty: no hair)
+  vector::HairMask mask;        // where the hair image shows
+  std::vector<InkStroke> ink;   // on top of everything
   // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
   // --svg-style flat.
   std::vector<diffusion::BezierPath> outlines;

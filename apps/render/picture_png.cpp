@@ -36,13 +36,15 @@ void polygon_path(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
   cairo_close_path(cr);
 }
 
-// A Bezier path with at least one piece as the current Cairo path.
-void bezier_path(cairo_t* cr, const diffusion::BezierPath& path) {
+// A Bezier path with at least one piece as the current Cairo path; `close` closes it (a filled
+// region's loop).
+void bezier_path(cairo_t* cr, const diffusion::BezierPath& path, bool close = false) {
   cairo_move_to(cr, path.points[0].x(), path.points[0].y());
   for (int i = 0; i < path.piece_count(); ++i) {
     const diffusion::Cubic c = path.piece(i);
     cairo_curve_to(cr, c[1].x(), c[1].y(), c[2].x(), c[2].y(), c[3].x(), c[3].y());
   }
+  if (close) cairo_close_path(cr);
 }
 
 void mask_path(cairo_t* cr, const vector::HairMask& mask) {
@@ -97,37 +99,11 @@ void ink_path(cairo_t* cr, const InkStroke& ink) {
   }
 }
 
-Surface draw(const FramePicture& pic) {
-  Surface surface = make_surface(pic.width, pic.height);
-  Context cr(cairo_create(surface.get()), cairo_destroy);
-  cairo_t* c = cr.get();
-  set_rgb(c, pic.background);
-  cairo_paint(c);
-  // Body: each polygon filled and outlined in its own colour, which hides the hairline seams that
-  // anti-aliasing leaves between neighbouring triangles.
-  cairo_set_line_width(c, 0.5);
-  cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
-  for (const BodyPolygon& poly : pic.body) {
-    cairo_new_path(c);
-    polygon_path(c, poly.points);
-    set_rgb(c, poly.color);
-    cairo_fill_preserve(c);
-    cairo_stroke(c);
-  }
-  if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
-    Surface hair = hair_surface(pic.hair);
-    cairo_save(c);
-    mask_path(c, pic.mask);
-    cairo_clip(c);
-    cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
-    cairo_set_source_surface(c, hair.get(), 0, 0);
-    cairo_paint(c);
-    cairo_restore(c);
-  }
+void draw_ink(cairo_t* c, const std::vector<InkStroke>& strokes) {
   cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
   cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
-  for (const InkStroke& ink : pic.ink) {
+  for (const InkStroke& ink : strokes) {
     if (!ink.curve.points.empty()) {
       set_rgb(c, ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
@@ -144,6 +120,35 @@ Surface draw(const FramePicture& pic) {
     set_rgb(c, ink.color);
     cairo_fill(c);
   }
+}
+
+Surface draw(const FramePicture& pic) {
+  Surface surface = make_surface(pic.width, pic.height);
+  Context cr(cairo_create(surface.get()), cairo_destroy);
+  cairo_t* c = cr.get();
+  set_rgb(c, pic.background);
+  cairo_paint(c);
+  // Body: one fill per tone region, all its loops in one path (no interior edge is drawn).
+  cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
+  for (const BodyPath& region : pic.body) {
+    cairo_new_path(c);
+    for (const auto& loop : region.loops)
+      if (loop.size() >= 4) bezier_path(c, {loop}, true);
+    set_rgb(c, region.color);
+    cairo_fill(c);
+  }
+  draw_ink(c, pic.face);  // on the head, under the hair
+  if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
+    Surface hair = hair_surface(pic.hair);
+    cairo_save(c);
+    mask_path(c, pic.mask);
+    cairo_clip(c);
+    cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
+    cairo_set_source_surface(c, hair.get(), 0, 0);
+    cairo_paint(c);
+    cairo_restore(c);
+  }
+  draw_ink(c, pic.ink);
   cairo_surface_flush(surface.get());
   return surface;
 }

@@ -39,8 +39,9 @@ void ring_path(std::ostringstream& o, const std::vector<Eigen::Vector2d>& ring) 
   if (!ring.empty()) o << " Z";
 }
 
-// Path data "M x y C ... C ..." of a Bezier path with at least one piece.
-std::string bezier_path(const diffusion::BezierPath& path) {
+// Path data "M x y C ... C ... [Z]" of a Bezier path with at least one piece; `close` closes it
+// (a filled region's loop).
+std::string bezier_path(const diffusion::BezierPath& path, bool close = false) {
   std::ostringstream o;
   o << 'M' << num(path.points[0].x()) << ' ' << num(path.points[0].y());
   for (int i = 0; i < path.piece_count(); ++i) {
@@ -48,6 +49,7 @@ std::string bezier_path(const diffusion::BezierPath& path) {
     o << " C" << num(c[1].x()) << ' ' << num(c[1].y()) << ' ' << num(c[2].x()) << ' '
       << num(c[2].y()) << ' ' << num(c[3].x()) << ' ' << num(c[3].y());
   }
+  if (close) o << " Z";
   return o.str();
 }
 
@@ -121,6 +123,26 @@ std::string ink_outline(const InkStroke& ink) {
   return o.str();
 }
 
+// A group of ink strokes.
+void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStroke>& strokes) {
+  o << " <g id=\"" << id
+    << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  for (const InkStroke& ink : strokes) {
+    if (!ink.curve.points.empty()) {
+      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
+      const std::string color = hex(ink.color);
+      for (const InkPiece& piece : ink_pieces(ink)) {
+        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color
+          << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
+      }
+    } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
+      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
+        << "\" stroke=\"none\"/>\n";
+    }
+  }
+  o << " </g>\n";
+}
+
 }  // namespace
 
 std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
@@ -131,14 +153,16 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
     << ' ' << pic.height << "\">\n";
   o << " <rect id=\"background\" width=\"" << pic.width << "\" height=\"" << pic.height
     << "\" fill=\"" << hex(pic.background) << "\"/>\n";
-  o << " <g id=\"body\" stroke-width=\"0.5\" stroke-linejoin=\"round\">\n";
-  for (const BodyPolygon& poly : pic.body) {
-    std::ostringstream d;
-    ring_path(d, poly.points);
-    const std::string c = hex(poly.color);
-    o << "  <path d=\"" << d.str() << "\" fill=\"" << c << "\" stroke=\"" << c << "\"/>\n";
+  // One path per tone region (apps/render/body_paths.hpp), nonzero fill: no interior edges.
+  o << " <g id=\"body\" fill-rule=\"nonzero\" stroke=\"none\">\n";
+  for (const BodyPath& region : pic.body) {
+    o << "  <path d=\"";
+    for (const auto& loop : region.loops)
+      if (loop.size() >= 4) o << bezier_path({loop}, true) << ' ';
+    o << "\" fill=\"" << hex(region.color) << "\"/>\n";
   }
   o << " </g>\n";
+  ink_group(o, "face", pic.face);  // on the head, under the hair
 
   const std::string silhouette = mask_path(pic.mask);
   if (style == SvgStyle::Embedded) {
@@ -170,20 +194,9 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
        "stroke-width=\"0.5\">\n";
   for (const diffusion::BezierPath& outline : pic.outlines)
     if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
-  o << " </g>\n <g id=\"ink\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-  for (const InkStroke& ink : pic.ink) {
-    if (!ink.curve.points.empty()) {
-      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
-      const std::string color = hex(ink.color);
-      for (const InkPiece& piece : ink_pieces(ink))
-        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color << "\" stroke-width=\""
-          << num(piece.width) << "\"/>\n";
-    } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
-      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
-        << "\" stroke=\"none\"/>\n";
-    }
-  }
-  o << " </g>\n</svg>\n";
+  o << " </g>\n";
+  ink_group(o, "ink", pic.ink);
+  o << "</svg>\n";
   return o.str();
 }
 

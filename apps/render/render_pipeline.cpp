@@ -95,7 +95,7 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
 
 }  // namespace
 
-FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
+FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, const FrameSetup& setup,
                          const std::vector<float>* warm_start) {
   const auto t_start = Clock::now();
@@ -128,7 +128,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolyg
   pic.width = W;
   pic.height = H;
   pic.background = setup.background;
-  pic.body = std::move(body);
+  pic.body = std::move(body.paths);
+  pic.face = std::move(body.face);
   pic.mask = r.arrangement.mask;
   for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.outline.points});
   if (setup.flat_regions)

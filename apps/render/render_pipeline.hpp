@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "apps/render/body_paths.hpp"
 #include "apps/render/picture.hpp"
 #include "diffusion/antialias.hpp"
 #include "diffusion/multigrid.hpp"
@@ -55,7 +56,7 @@ struct FrameResult {
 // arrangement cuts it along their silhouettes, so hair slides behind the head continuously
 // instead of losing whole samples; without, wisps keep the samples the camera marked visible.
 // `warm_start`: the previous frame's solution (same size) or null.
-FrameResult render_frame(const sim::ProjectedFrame& frame, std::vector<BodyPolygon> body,
+FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, const FrameSetup& setup,
                          const std::vector<float>* warm_start);
 

@@ -54,33 +54,22 @@ FrameSetup frame_setup(const io::Scene& scene) {
   return setup;
 }
 
-std::vector<BodyPolygon> frame_body(const SceneFrames& frames, int k) {
-  std::vector<BodyPolygon> out;
-  if (!frames.body) return out;
+BodyTones body_tones(const io::Scene& scene) {
+  BodyTones tones;
+  tones.lit = scene.render.skin_color;
+  tones.shadow = tones.lit * 0.72f;
+  return tones;
+}
+
+BodyLayer frame_body(const SceneFrames& frames, int k) {
+  if (!frames.body) return {};
   const io::Scene& scene = frames.scene;
-  const sim::ProjectedBody body = frames.body->project(
-      frames.anim.frames.at(k).head, sim::Camera::look_at(scene.camera), scene.light_dir);
-  const Rgb lit = scene.render.skin_color, shadow = lit * 0.72f;
-  constexpr double kBand = 0.45;  // half-Lambert shade where the shadow tone begins
-  out.reserve(body.triangles.size());
-  for (const sim::BodyTriangle& t : body.triangles) {
-    // Split the triangle along the iso-line shade = kBand of its smooth (per-vertex) shading
-    // into its lit and shadowed parts: the band edge runs smoothly across triangles.
-    BodyPolygon bright{{}, lit}, dark{{}, shadow};
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector2d a = t.p[i], b = t.p[(i + 1) % 3];
-      const double sa = t.vertex_shade[i], sb = t.vertex_shade[(i + 1) % 3];
-      (sa >= kBand ? bright : dark).points.push_back(a);
-      if ((sa >= kBand) != (sb >= kBand)) {
-        const Eigen::Vector2d m = a + (b - a) * ((kBand - sa) / (sb - sa));
-        bright.points.push_back(m);
-        dark.points.push_back(m);
-      }
-    }
-    for (BodyPolygon* part : {&dark, &bright})
-      if (part->points.size() >= 3) out.push_back(std::move(*part));
-  }
-  return out;
+  const sim::HeadPose& pose = frames.anim.frames.at(k).head;
+  const sim::Camera camera = sim::Camera::look_at(scene.camera);
+  BodyLayer layer;
+  layer.paths = body_paths(frames.body->project(pose, camera, scene.light_dir), body_tones(scene));
+  layer.face = face_strokes(frames.body->face(pose, camera), scene.render.face_color);
+  return layer;
 }
 
 std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) {

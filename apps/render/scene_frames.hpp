@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/render/body_paths.hpp"
 #include "apps/render/picture.hpp"
 #include "apps/render/render_pipeline.hpp"
 #include "io/scene.hpp"
@@ -47,9 +48,12 @@ SceneFrames load_scene_frames(io::Scene scene, const SceneFramesOptions& options
 // The renderer's settings for a scene (style, solver tolerance, background).
 FrameSetup frame_setup(const io::Scene& scene);
 
-// The body under the hair in frame k as flat polygons, back to front, in two skin tones (a toon
-// look): lit and shadowed, split along the smooth iso-line of the light's half-Lambert shade.
-std::vector<BodyPolygon> frame_body(const SceneFrames& frames, int k);
+// The skin tones of a scene: render.skin_color where lit, 72 % of it in shadow.
+BodyTones body_tones(const io::Scene& scene);
+
+// The body under the hair in frame k: seamless paths of two flat skin tones, back to front, and
+// the face's lines (apps/render/body_paths.hpp).
+BodyLayer frame_body(const SceneFrames& frames, int k);
 
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
 // the scene draws no body.

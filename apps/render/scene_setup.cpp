@@ -69,6 +69,7 @@ sim::BodyParams body_params(const io::Scene& scene) {
   sim::BodyParams body = sim::body_params(scene.head);
   body.head = scene.render.body;
   body.neck = body.torso = scene.render.body && scene.render.torso;
+  body.face = scene.render.face;
   return body;
 }
 

@@ -256,12 +256,18 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
 
 TEST_CASE("the scene's body and projector options follow render.body and render.torso",
           "[io][scene]") {
-  wisp::io::Scene s = parse_scene(json::parse(R"({"head": {"shoulder_radius": 0.05},
+  wisp::io::Scene s =
+      parse_scene(json::parse(R"({"head": {"shoulder_radius": 0.05, "torso_turn": 0.2},
                                                   "light": {"direction": [1, 0, 0]}})"),
-                                  "scene.json");
+                  "scene.json");
   wisp::sim::BodyParams b = wisp::render::body_params(s);
   CHECK((b.head && b.neck && b.torso));
-  CHECK(b.shoulders.radius == 0.05);  // the collision capsule
+  CHECK(b.torso_turn == 0.2);
+  // shoulder_radius scales the figure's depths (and the arms' thickness).
+  const wisp::sim::BodyParams d =
+      wisp::render::body_params(parse_scene(json::parse("{}"), "scene.json"));
+  for (std::size_t i = 0; i < d.torso_shape.half_depth.size(); ++i)
+    CHECK(b.torso_shape.half_depth[i] == Approx(d.torso_shape.half_depth[i] * 0.05 / 0.07));
   wisp::sim::ProjectorOptions o = wisp::render::projector_options(s);
   CHECK(o.light_dir == Eigen::Vector3d::UnitX());
   REQUIRE(o.body);

@@ -21,9 +21,11 @@ double cross2(const Vector2d& a, const Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-bool in_triangle(const wisp::sim::BodyTriangle& t, const Vector2d& q) {
-  const double a = cross2(t.p[1] - t.p[0], q - t.p[0]), b = cross2(t.p[2] - t.p[1], q - t.p[1]),
-               c = cross2(t.p[0] - t.p[2], q - t.p[2]);
+bool in_triangle(const wisp::sim::ProjectedSurface& s, const Eigen::Vector3i& t,
+                 const Vector2d& q) {
+  const Vector2d p[3] = {s.pixel[t[0]], s.pixel[t[1]], s.pixel[t[2]]};
+  const double a = cross2(p[1] - p[0], q - p[0]), b = cross2(p[2] - p[1], q - p[1]),
+               c = cross2(p[0] - p[2], q - p[2]);
   return (a <= 0 && b <= 0 && c <= 0) || (a >= 0 && b >= 0 && c >= 0);
 }
 
@@ -65,8 +67,10 @@ TEST_CASE("every shipped scene simulates, and its hair sits on the head inside t
         }
         if (check_roots) {
           bool on = false;
-          for (const auto& t : pb.triangles)
-            on = on || (t.part == 0 && in_triangle(t, ps.pixel[0]));
+          for (const auto& surface : pb.surfaces)
+            for (const auto& t : surface.triangles)
+              on = on ||
+                   (surface.part == wisp::sim::kBodyHead && in_triangle(surface, t, ps.pixel[0]));
           roots_off_head += !on;
         }
       }

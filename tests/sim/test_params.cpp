@@ -97,8 +97,8 @@ TEST_CASE("defaults are valid and validate() names the first bad field", "[sim][
   camera.up = camera.target - camera.eye;
   CHECK(invalid(camera) == "up: must not be parallel to the view");
   BodyParams body;
-  body.chest_radii.y() = std::nan("");
-  CHECK(invalid(body) == "chest_radii: every radius must be > 0");
+  body.torso_turn = 2;
+  CHECK(invalid(body) == "torso_turn: must be in [0, 1]");
 }
 
 TEST_CASE("the simulator refuses what validate() refuses, naming the part", "[sim][params]") {
