@@ -8,6 +8,8 @@
 #include <memory>
 #include <numeric>
 
+#include "sim/surface_rays.hpp"
+
 namespace wisp::render {
 namespace {
 
@@ -61,63 +63,6 @@ std::vector<Vector2d> convex_hull(std::vector<Vector2d> p) {
   return h;
 }
 
-// One surface: its triangles in world space and a coarse grid over their projections, so that
-// a depth query only tests the triangles near the pixel.
-struct Surface {
-  std::vector<Eigen::Matrix3d> world;
-  std::vector<std::array<Vector2d, 3>> pixel;
-  Eigen::AlignedBox2d box;
-  int cells = 1;
-  std::vector<std::vector<int>> grid;
-  sim::Camera camera;
-  double bias = 0;
-
-  int cell(double v, double lo, double hi) const {
-    return std::clamp(int((v - lo) / (hi - lo) * cells), 0, cells - 1);
-  }
-
-  void build() {
-    cells = std::clamp(int(std::sqrt(double(world.size()))), 1, 64);
-    grid.assign(size_t(cells) * cells, {});
-    for (int t = 0; t < int(pixel.size()); ++t) {
-      Eigen::AlignedBox2d b;
-      for (const Vector2d& q : pixel[t]) b.extend(q);
-      for (int y = cell(b.min().y(), box.min().y(), box.max().y());
-           y <= cell(b.max().y(), box.min().y(), box.max().y()); ++y)
-        for (int x = cell(b.min().x(), box.min().x(), box.max().x());
-             x <= cell(b.max().x(), box.min().x(), box.max().x()); ++x)
-          grid[size_t(y) * cells + x].push_back(t);
-    }
-  }
-
-  // Distance along the eye ray through pixel p to the nearest triangle (Moller-Trumbore).
-  double depth(const Vector2d& p) const {
-    if (!box.contains(p)) return INFINITY;
-    const Vector3d dir =
-        (camera.forward + camera.right * ((p.x() - 0.5 * camera.width) / camera.focal_px) -
-         camera.up * ((p.y() - 0.5 * camera.height) / camera.focal_px))
-            .normalized();
-    double best = INFINITY;
-    const auto& bucket = grid[size_t(cell(p.y(), box.min().y(), box.max().y())) * cells +
-                              cell(p.x(), box.min().x(), box.max().x())];
-    for (int t : bucket) {
-      const Vector3d a = world[t].col(0), e1 = world[t].col(1) - a, e2 = world[t].col(2) - a;
-      const Vector3d q = dir.cross(e2);
-      const double det = e1.dot(q);
-      if (std::abs(det) < 1e-14) continue;
-      const Vector3d s = camera.eye - a;
-      const double u = s.dot(q) / det;
-      if (u < 0 || u > 1) continue;
-      const Vector3d r = s.cross(e1);
-      const double v = dir.dot(r) / det;
-      if (v < 0 || u + v > 1) continue;
-      const double d = e2.dot(r) / det;
-      if (d > 0) best = std::min(best, d);
-    }
-    return best + bias;
-  }
-};
-
 }  // namespace
 
 std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const sim::HeadPose& pose,
@@ -125,29 +70,22 @@ std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const s
   const std::vector<Eigen::Matrix3d> tris = body.world_triangles(pose);
   std::vector<vector::Occluder> out;
   for (const std::vector<int>& group : surfaces(tris)) {
-    auto s = std::make_shared<Surface>();
-    s->camera = camera;
-    s->bias = bias;
-    std::vector<Vector2d> points;
+    std::vector<Eigen::Matrix3d> world;
     bool behind = false;
     for (int t : group) {
-      s->world.push_back(tris[t]);
-      std::array<Vector2d, 3> px;
-      for (int c = 0; c < 3; ++c) {
+      world.push_back(tris[t]);
+      for (int c = 0; c < 3; ++c)
         behind |= (Vector3d(tris[t].col(c)) - camera.eye).dot(camera.forward) <= 1e-3;
-        px[c] = camera.project(tris[t].col(c));
-        points.push_back(px[c]);
-        s->box.extend(px[c]);
-      }
-      s->pixel.push_back(px);
     }
     // A surface reaching behind the eye has no meaningful silhouette; it is left out.
-    if (behind || points.size() < 3) continue;
-    s->build();
+    if (behind || world.empty()) continue;
+    auto s = std::make_shared<const sim::SurfaceRays>(std::move(world), camera);
+    std::vector<Vector2d> points;
+    for (const auto& px : s->pixels()) points.insert(points.end(), px.begin(), px.end());
     vector::Occluder o;
     o.ring = convex_hull(points);
     if (o.ring.size() < 3) continue;
-    o.depth = [s](const Vector2d& p) { return s->depth(p); };
+    o.depth = [s, bias](const Vector2d& p) { return s->depth(p) + bias; };
     out.push_back(std::move(o));
   }
   return out;
