@@ -448,6 +448,18 @@ void parse_ink(Fields& f, vector::HairStyle& st) {
           "must be in (0, 5] pixels");
 }
 
+void parse_base(Fields& f, vector::HairStyle& st) {
+  vector::BaseStyle& b = st.base;
+  f.get("enabled", b.enabled);
+  f.get("tone", b.tone);
+  require(f, b.tone >= 0 && b.tone <= 1, "tone",
+          "must be in [0, 1] (0: the shadow colour, 1: the hair colour)");
+  f.get("spread", b.spread);
+  require(f, b.spread >= 0.25 && b.spread <= 8, "spread", "must be in [0.25, 8] root spacings");
+  f.get("level", b.level);
+  require(f, b.level > 0 && b.level < 1, "level", "must be in (0, 1) (a coverage level)");
+}
+
 // A nested object of the style, parsed by `parse` and checked for unknown keys.
 template <void (*parse)(Fields&, vector::HairStyle&)>
 void style_object(Fields& f, const char* k, vector::HairStyle& s) {
@@ -511,6 +523,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"shading", style_object<parse_shading>},
       {"highlights", style_object<parse_highlights>},
       {"ink", style_object<parse_ink>},
+      {"base", style_object<parse_base>},
   };
   return table;
 }

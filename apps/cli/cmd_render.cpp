@@ -176,7 +176,7 @@ void run_render(const RenderArgs& a) {
       const auto t_frame = Clock::now();
       render::FrameResult r = render::render_frame(
           frames.projected[k], render::frame_body(frames, k), render::frame_occluders(frames, k),
-          setup, warm.empty() ? nullptr : &warm);
+          render::frame_base(frames, k), setup, warm.empty() ? nullptr : &warm);
       warm = std::move(r.solution);
       if (!todo[k]) continue;  // solved only to warm-start the next frame of the block
       const auto t_write = Clock::now();
@@ -195,7 +195,8 @@ void run_render(const RenderArgs& a) {
                            {{"outlines", r.curve_stats.outlines},
                             {"centre_lines", r.curve_stats.centre_lines},
                             {"band_edges", r.curve_stats.band_edges},
-                            {"highlights", r.curve_stats.highlights}}},
+                            {"highlights", r.curve_stats.highlights},
+                            {"base", r.base_curves}}},
                           {"ink_strokes", r.picture.ink.size()},
                           {"faces", r.arrangement.stats.faces},
                           {"edges", r.arrangement.stats.edges},
