@@ -404,17 +404,23 @@ void parse_highlights(Fields& f, vector::HairStyle& st) {
   require(f, h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
   f.get("shininess", h.shininess);
   require(f, h.shininess > 0 && h.shininess <= 10000, "shininess", "must be in (0, 10000]");
-  f.get("shin_weight", h.shin_weight);
-  require(f, h.shin_weight >= 0 && h.shin_weight <= 1, "shin_weight", "must be in [0, 1]");
   f.get("max_width", h.max_width);
   require(f, h.max_width > 0 && h.max_width <= 1, "max_width",
           "must be in (0, 1] (a fraction of the wisp's half-width)");
   f.get("teeth", h.teeth);
   require(f, h.teeth >= 1 && h.teeth <= 16, "teeth", "must be in [1, 16]");
-  f.get("link_distance", h.link_distance);
-  require(f, h.link_distance >= 0, "link_distance", "must be >= 0 pixels");
-  f.get("min_cluster", h.min_cluster);
-  require(f, h.min_cluster >= 1, "min_cluster", "must be at least 1");
+  f.get("band_width_deg", h.band_width_deg);
+  require(f, h.band_width_deg > 0 && h.band_width_deg <= 90, "band_width_deg",
+          "must be in (0, 90] degrees");
+  f.get("band_extent_deg", h.band_extent_deg);
+  require(f, h.band_extent_deg >= 1 && h.band_extent_deg <= 180, "band_extent_deg",
+          "must be in [1, 180] degrees");
+  f.get("band_shift_deg", h.band_shift_deg);
+  require(f, h.band_shift_deg >= -90 && h.band_shift_deg <= 90, "band_shift_deg",
+          "must be in [-90, 90] degrees");
+  f.get("tooth_depth", h.tooth_depth);
+  require(f, h.tooth_depth >= 0 && h.tooth_depth <= 10, "tooth_depth",
+          "must be in [0, 10] band widths");
 }
 
 void parse_ink(Fields& f, vector::HairStyle& st) {

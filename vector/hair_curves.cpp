@@ -207,19 +207,6 @@ ChartCurve fit_chart_curve(const WispChart& chart, std::vector<Vector2d> tu, boo
   return c;
 }
 
-// Chart points along a polygon's edges, at most `step` apart in t or u (in chart units), so the
-// mapped curve follows the chart's bending.
-std::vector<Vector2d> densify(const ChartPolygon& poly, double step_t, double step_u) {
-  std::vector<Vector2d> out;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
-    const int n = std::max({1, int(std::ceil(std::abs(b.x() - a.x()) / step_t)),
-                            int(std::ceil(std::abs(b.y() - a.y()) / step_u))});
-    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * (double(k) / n));
-  }
-  return out;
-}
-
 }  // namespace
 
 bool needs_visible_regions(const HairStyle& style) {
@@ -290,22 +277,28 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       if (charts[w])
         highlights[w] = band_highlights(*charts[w], samples[w], style.specular, light.light);
   } else if (shape == HighlightShape::Anime) {
-    std::vector<AnimeCandidate> cands;
-    for (int w = 0; w < n; ++w) {
-      if (!charts[w]) continue;
-      if (auto c =
-              anime_candidate(*charts[w], samples[w], style.specular, light.light, head_centre)) {
-        c->wisp = w;
-        cands.push_back(*c);
+    double radius = 0;
+    for (const Vector3d& r : roots) radius += (r - head_centre).norm() / double(roots.size());
+    const AnimeBand band =
+        anime_band(style.specular, frame, head_centre, radius, style.geometry.width);
+    for (int w = 0; w < n; ++w)
+      if (charts[w]) highlights[w] = anime_highlights(*charts[w], samples[w], style.specular, band);
+  }
+
+  // The highlights in pixels, for the outlines in front of them (HighlightCover).
+  const auto step_t_of = [&](int w) {
+    return (charts[w]->t_end() - charts[w]->t_begin()) / std::max<size_t>(8, samples[w].size());
+  };
+  std::optional<HighlightCover> cover;
+  if (regions) {
+    cover.emplace(*regions);
+    for (int w = 0; w < n; ++w)
+      for (const ChartPolygon& p : highlights[w]) {
+        std::vector<Vector2d> ring;
+        for (const Vector2d& tu : densify(p, step_t_of(w), 0.1))
+          ring.push_back(charts[w]->point(tu.x(), tu.y()));
+        cover->add(w, std::move(ring));
       }
-    }
-    const double scale =
-        std::min(frame.width, frame.height) / std::max(1.0, style.ink.reference_size);
-    const std::vector<int> cluster =
-        cluster_candidates(cands, style.specular.link_distance * scale, style.specular.min_cluster);
-    for (size_t i = 0; i < cands.size(); ++i)
-      if (cluster[i] >= 0)
-        highlights[cands[i].wisp].push_back(anime_zigzag(cands[i], style.specular));
   }
 
   std::vector<diffusion::DiffusionCurve> inner;
@@ -319,7 +312,8 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
     diffusion::DiffusionCurve outline;
     outline.points = wisp.outline.points;
     outline.left = lit ? outline_stops(wisp, shader, ts) : faraj_stops(wisp, style);
-    outline.right = {{0.0, style.shadow}, {1.0, style.shadow}};
+    outline.right = cover ? cover->outside_stops(wisp, w, style.shadow, style.specular.color)
+                          : std::vector<ColorStop>{{0.0, style.shadow}, {1.0, style.shadow}};
     outline.active = arrangement.visible[w];
     result.outline_of[w] = int(result.curves.size());
     result.curves.push_back(std::move(outline));
@@ -389,9 +383,8 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       }
     }
 
-    const double step_t = (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, ts.size());
     for (const ChartPolygon& p : shapes) {
-      ChartCurve c = fit_chart_curve(chart, densify(p, step_t, 0.1), true);
+      ChartCurve c = fit_chart_curve(chart, densify(p, step_t_of(w), 0.1), true);
       if (c.path.cubic_count() == 0) continue;
       diffusion::DiffusionCurve d;
       d.points = c.path.points;

@@ -11,7 +11,8 @@
 //  - at each hard edge of the toon ramp, the level set of the ramp's x in the wisp's chart, with
 //    the two bands' colours on its two sides (diffusion alone would blend them smoothly);
 //  - highlights (vector/highlights.hpp): closed, the highlight colour inside, an insulating
-//    (Neumann) side outside so the shading around them is undisturbed.
+//    (Neumann) side outside so the shading around them is undisturbed; an outline in front of
+//    another wisp's highlight carries the highlight colour outside instead of the shadow colour.
 // These are built in the wisp's chart, so they lie inside the wisp, and are active only where
 // the wisp is visible (vector/visible_region.hpp: the arrangement's faces whose front-most wisp
 // it is) and, for the centre line and band edges, outside the wisp's highlights.
