@@ -68,14 +68,14 @@ SweepShape::SweepShape(const Sweep& sweep) : t_(sweep.t) {
   c_ = monotone(t_, sweep.half_depth);
   o_ = monotone(t_, sweep.offset);
   for (Spline* s : {&a_, &c_, &o_}) s->m[1] = s->m[n - 2] = 0;
-  // The splines do not overshoot their samples, and the caps stay within their rims.
-  double a = 0, c = 0, z = 0;
+  // The splines do not overshoot their samples, and the caps stay within their rims: every
+  // section lies within its centre's offset plus its larger half-width of the axis.
+  double r = 0, z = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    a = std::max(a, sweep.half_width[i]);
-    c = std::max(c, sweep.half_depth[i]);
+    r = std::max({r, sweep.half_width[i], sweep.half_depth[i]});
     z = std::max(z, std::abs(sweep.offset[i]));
   }
-  max_radius_ = std::max(a, z + c);
+  max_radius_ = z + r;
 }
 
 double SweepShape::lower_bound(const Vector3d& p, double length, Vector3d* normal) const {

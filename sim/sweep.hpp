@@ -70,7 +70,7 @@ class SweepShape {
   double lower_bound(const Eigen::Vector3d& p, double length,
                      Eigen::Vector3d* normal = nullptr) const;
 
-  // Largest half-width or half-depth, |offset| included (for bounding spheres).
+  // A radius around the axis that holds every section (for bounds).
   double max_radius() const { return max_radius_; }
 
  private:
