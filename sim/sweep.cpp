@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -69,46 +68,25 @@ SweepShape::SweepShape(const Sweep& sweep) : t_(sweep.t) {
   c_ = monotone(t_, sweep.half_depth);
   o_ = monotone(t_, sweep.offset);
   for (Spline* s : {&a_, &c_, &o_}) s->m[1] = s->m[n - 2] = 0;
-  for (int k = 0; k < kBands; ++k) {
-    band_radius_[k] = 0;
-    for (int i = 0; i <= 64; ++i) {
-      const Section s = section((k + i / 64.0) / kBands);
-      band_radius_[k] = std::max({band_radius_[k], s.a, std::abs(s.z) + s.c});
-    }
-    band_radius_[k] *= 1.01;  // the spline between the 65 samples
-    max_radius_ = std::max(max_radius_, band_radius_[k]);
+  // The splines do not overshoot their samples, and the caps stay within their rims: every
+  // section lies within its centre's offset plus its larger half-width of the axis.
+  double r = 0, z = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    r = std::max({r, sweep.half_width[i], sweep.half_depth[i]});
+    z = std::max(z, std::abs(sweep.offset[i]));
   }
+  max_radius_ = z + r;
 }
 
 double SweepShape::lower_bound(const Vector3d& p, double length, Vector3d* normal) const {
-  // (std::hypot is exact and slow; these are bounds.)
-  const double radial2 = p.x() * p.x() + p.z() * p.z();
-  const auto to_segment = [&](double y0, double y1) {
-    const double dy = p.y() < y0 ? y0 - p.y() : p.y() > y1 ? p.y() - y1 : 0.0;
-    return std::sqrt(radial2 + dy * dy);
-  };
-  Vector3d nearest(0, std::clamp(p.y(), 0.0, length), 0);
-  double best = to_segment(0, length) - max_radius_;
-  if (best < 0.1) {  // near: the bands' finer bound, from the band level with p outwards
-    best = std::numeric_limits<double>::infinity();
-    const int home = std::clamp(int(p.y() / length * kBands), 0, kBands - 1);
-    for (int i = 0; i < kBands; ++i) {
-      const int k = (home + i) % kBands;
-      const double y0 = length * k / kBands, y1 = length * (k + 1) / kBands;
-      const double dy = p.y() < y0 ? y0 - p.y() : p.y() > y1 ? p.y() - y1 : 0.0;
-      if (dy - band_radius_[k] >= best) continue;  // cannot be nearer
-      const double d = to_segment(y0, y1) - band_radius_[k];
-      if (d < best) {
-        best = d;
-        nearest.y() = std::clamp(p.y(), y0, y1);
-      }
-    }
-  }
+  const double dy = p.y() < 0 ? -p.y() : p.y() > length ? p.y() - length : 0.0;
+  // (std::hypot is exact and slow; this is a bound.)
+  const double d = std::sqrt(p.x() * p.x() + p.z() * p.z() + dy * dy);
   if (normal) {
-    const Vector3d v = p - nearest;
-    *normal = v.norm() > 1e-12 ? Vector3d(v.normalized()) : Vector3d::UnitY();
+    const Vector3d v = p - Vector3d(0, std::clamp(p.y(), 0.0, length), 0);
+    *normal = d > 1e-12 ? Vector3d(v / d) : Vector3d::UnitY();
   }
-  return best;
+  return d - max_radius_;
 }
 
 void SweepShape::eval(const Spline& s, double t, double& value, double& slope) const {

@@ -15,7 +15,7 @@
 // the half ellipsoids' own estimate in the caps' reach: the sign is exact (F < 1 exactly
 // inside), the value exact on the surface and good within centimetres, which is what collision
 // and cutting need. Outside, never below a lower bound (the distance to the axis minus the
-// widest section nearby).
+// widest section).
 #pragma once
 
 #include <Eigen/Core>
@@ -65,12 +65,12 @@ class SweepShape {
   std::vector<double> ring_parameters(double spacing, double length) const;
 
   // A lower bound of the true distance from local point p: the distance to the axis minus the
-  // widest section, per 32nd of the length. Much cheaper than distance(); `normal` points away
-  // from the nearest axis point.
+  // widest section. Much cheaper than distance(); `normal` points away from the nearest axis
+  // point.
   double lower_bound(const Eigen::Vector3d& p, double length,
                      Eigen::Vector3d* normal = nullptr) const;
 
-  // Largest half-width or half-depth, |offset| included (for bounding spheres).
+  // A radius around the axis that holds every section (for bounds).
   double max_radius() const { return max_radius_; }
 
  private:
@@ -80,8 +80,6 @@ class SweepShape {
   std::vector<double> t_;
   Spline a_, c_, o_;
   double max_radius_ = 0;
-  static constexpr int kBands = 32;
-  double band_radius_[kBands];  // per band of t: the largest max(a, |z0| + c)
 
   static Spline monotone(const std::vector<double>& t, const std::vector<double>& v);
   void eval(const Spline& s, double t, double& value, double& slope) const;
