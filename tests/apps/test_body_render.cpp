@@ -9,8 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/render/scene_frames.hpp"
-#include "run_command.hpp"
 #include "diffusion/bezier.hpp"
+#include "run_command.hpp"
 
 using Eigen::Vector2d;
 using wisp::test::fresh_folder;
