@@ -132,8 +132,8 @@ void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStrok
       // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
       const std::string color = hex(ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
-        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color
-          << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
+        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color << "\" stroke-width=\""
+          << num(piece.width) << "\"/>\n";
       }
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
       o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
