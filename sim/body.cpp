@@ -32,19 +32,9 @@ TriangleMesh uv_sphere(int slices, int stacks) {
                                     std::sin(theta) * std::sin(phi)));
     }
   }
-  const int top = int(m.vertices.size());
   m.vertices.push_back(Vector3d(0, 1, 0));
   // Rings go up (+y) and around from +x towards +z: (up, around) is outward, as for sweeps.
-  const auto at = [&](int ring, int j) { return 1 + (ring - 1) * slices + j % slices; };
-  const int rings = stacks;
-  for (int j = 0; j < slices; ++j) {
-    m.triangles.emplace_back(0, at(1, j), at(1, j + 1));
-    for (int k = 1; k + 1 < rings; ++k) {
-      m.triangles.emplace_back(at(k, j), at(k + 1, j), at(k, j + 1));
-      m.triangles.emplace_back(at(k + 1, j), at(k + 1, j + 1), at(k, j + 1));
-    }
-    m.triangles.emplace_back(top, at(rings - 1, j + 1), at(rings - 1, j));
-  }
+  m.triangles = pole_to_pole_triangles(slices, stacks);
   return m;
 }
 

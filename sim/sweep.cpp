@@ -238,20 +238,26 @@ SweepMesh sweep_mesh(const SweepShape& shape, double length, int slices, double 
       m.t.push_back(ts[k]);
       m.theta.push_back(2 * M_PI * j / slices);
     }
-  const int top = int(m.t.size());
   m.t.push_back(1);
   m.theta.push_back(0);
   // Rings run from +x towards +z, and upwards along y: (up, around) is outward.
-  const auto at = [&](int ring, int j) { return 1 + (ring - 1) * slices + j % slices; };
-  for (int j = 0; j < slices; ++j) {
-    m.triangles.emplace_back(0, at(1, j), at(1, j + 1));
-    for (int k = 1; k + 1 < rings; ++k) {
-      m.triangles.emplace_back(at(k, j), at(k + 1, j), at(k, j + 1));
-      m.triangles.emplace_back(at(k + 1, j), at(k + 1, j + 1), at(k, j + 1));
-    }
-    m.triangles.emplace_back(top, at(rings - 1, j + 1), at(rings - 1, j));
-  }
+  m.triangles = pole_to_pole_triangles(slices, rings);
   return m;
+}
+
+std::vector<Eigen::Vector3i> pole_to_pole_triangles(int slices, int rings) {
+  const int top = 1 + (rings - 1) * slices;
+  const auto at = [&](int ring, int j) { return 1 + (ring - 1) * slices + j % slices; };
+  std::vector<Eigen::Vector3i> out;
+  for (int j = 0; j < slices; ++j) {
+    out.emplace_back(0, at(1, j), at(1, j + 1));
+    for (int k = 1; k + 1 < rings; ++k) {
+      out.emplace_back(at(k, j), at(k + 1, j), at(k, j + 1));
+      out.emplace_back(at(k + 1, j), at(k + 1, j + 1), at(k, j + 1));
+    }
+    out.emplace_back(top, at(rings - 1, j + 1), at(rings - 1, j));
+  }
+  return out;
 }
 
 }  // namespace wisp::sim

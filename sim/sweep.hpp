@@ -95,4 +95,9 @@ struct SweepMesh {
 };
 SweepMesh sweep_mesh(const SweepShape& shape, double length, int slices, double spacing);
 
+// The triangles of a closed surface of vertices laid out pole first, then rings - 1 rings of
+// `slices` vertices each, then the other pole (the sweep meshes' and the UV sphere's layout),
+// outward counter-clockwise when (up, around) is outward.
+std::vector<Eigen::Vector3i> pole_to_pole_triangles(int slices, int rings);
+
 }  // namespace wisp::sim
