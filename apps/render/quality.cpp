@@ -19,6 +19,11 @@ cv::Mat read_rgb(const std::filesystem::path& path) {
   return m;
 }
 
+// The largest per-channel difference of two colours (0-255).
+float colour_distance(const cv::Vec3f& p, const cv::Vec3f& q) {
+  return std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])});
+}
+
 }  // namespace
 
 FrameQuality frame_quality(const std::filesystem::path& frame,
@@ -32,16 +37,13 @@ FrameQuality frame_quality(const std::filesystem::path& frame,
   cv::Mat b;
   cv::resize(big, b, a.size(), 0, 0, cv::INTER_AREA);
   const cv::Vec3f bg(background[2] * 255, background[1] * 255, background[0] * 255);  // BGR
-  const auto off_background = [&](const cv::Vec3f& p) {
-    return std::max({std::abs(p[0] - bg[0]), std::abs(p[1] - bg[1]), std::abs(p[2] - bg[2])}) > 3;
-  };
+  const auto off_background = [&](const cv::Vec3f& p) { return colour_distance(p, bg) > 3; };
   std::vector<float> errors;
   for (int y = 0; y < a.rows; ++y)
     for (int x = 0; x < a.cols; ++x) {
       const cv::Vec3f p = a.at<cv::Vec3f>(y, x), q = b.at<cv::Vec3f>(y, x);
       if (!off_background(p) && !off_background(q)) continue;
-      errors.push_back(
-          std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}));
+      errors.push_back(colour_distance(p, q));
     }
   FrameQuality out;
   out.figure_pixels = long(errors.size());
