@@ -19,6 +19,14 @@ namespace {
 
 using Eigen::Vector3d;
 
+// Head-local to world.
+Eigen::Isometry3d head_frame(const HeadPose& pose) {
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  frame.linear() = pose.rotation.toRotationMatrix();
+  frame.translation() = pose.position;
+  return frame;
+}
+
 // A UV sphere of unit radius around the y axis (poles at the crown and under the chin), outward
 // counter-clockwise triangles.
 TriangleMesh uv_sphere(int slices, int stacks) {
@@ -395,11 +403,29 @@ std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3
     m.triangles = neck_.triangles;
     out.push_back(placed(kBodyNeck, BodyShape::kNeck, m, at.frame));
   }
-  if (b.head) {
-    Eigen::Isometry3d head = Eigen::Isometry3d::Identity();
-    head.linear() = pose.rotation.toRotationMatrix();
-    head.translation() = pose.position;
-    out.push_back(placed(kBodyHead, -1, head_, head));
+  if (b.head) out.push_back(placed(kBodyHead, -1, head_, head_frame(pose)));
+  return out;
+}
+
+std::vector<Eigen::Matrix3d> BodyModel::head_triangles(const HeadPose& pose) const {
+  const Eigen::Isometry3d frame = head_frame(pose);
+  std::vector<Eigen::Matrix3d> out;
+  out.reserve(head_.triangles.size());
+  for (const Eigen::Vector3i& t : head_.triangles) {
+    Eigen::Matrix3d m;
+    m << frame * head_.vertices[t[0]], frame * head_.vertices[t[1]], frame * head_.vertices[t[2]];
+    out.push_back(m);
+  }
+  return out;
+}
+
+std::vector<Eigen::Matrix3d> world_triangles(const BodySurface& surface) {
+  std::vector<Eigen::Matrix3d> out;
+  out.reserve(surface.triangles.size());
+  for (const Eigen::Vector3i& t : surface.triangles) {
+    Eigen::Matrix3d m;
+    m << surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]];
+    out.push_back(m);
   }
   return out;
 }

@@ -152,6 +152,9 @@ struct ProjectedSurface {
   std::vector<Eigen::Vector3i> triangles;
 };
 
+// The surface's triangles in world space, corners as columns (for sim::SurfaceRays).
+std::vector<Eigen::Matrix3d> world_triangles(const BodySurface& surface);
+
 // Surfaces in drawing order: paint each whole over the ones before.
 struct ProjectedBody {
   std::vector<ProjectedSurface> surfaces;
@@ -174,6 +177,10 @@ class BodyModel {
   // `light_dir` points towards the light (world space; normalised here; zero gives shade 0.5).
   ProjectedBody project(const HeadPose& pose, const Camera& camera,
                         const Eigen::Vector3d& light_dir) const;
+
+  // The posed head's triangles in world space (corners as columns, for sim::SurfaceRays), drawn
+  // or not.
+  std::vector<Eigen::Matrix3d> head_triangles(const HeadPose& pose) const;
 
   // The facial features' visible runs (none unless the head and its face are drawn).
   std::vector<FaceStroke> face(const HeadPose& pose, const Camera& camera) const;

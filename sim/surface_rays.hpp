@@ -1,0 +1,45 @@
+// Eye rays against a posed triangle surface (a part of the body model, sim/body.hpp): where the
+// ray through a pixel first meets the triangles. The triangles are projected once and binned in a
+// coarse grid over their pixel bounding box, so a query tests only those near its pixel
+// (sim/ray_triangle.hpp on each). Used for the depth of the head and body as occluders of the hair
+// and for the point of the scalp seen through a pixel (sim/scalp.hpp).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "sim/camera.hpp"
+
+namespace wisp::sim {
+
+class SurfaceRays {
+ public:
+  // `triangles`: world space, the columns are the corners.
+  SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera);
+
+  // Distance from the eye along the ray through pixel p to the nearest triangle; +infinity on a
+  // miss.
+  double depth(const Eigen::Vector2d& p) const;
+  // The unit direction of the eye ray through pixel p (the inverse of Camera::project).
+  Eigen::Vector3d ray(const Eigen::Vector2d& p) const;
+
+  const Camera& camera() const { return camera_; }
+  // The triangles' projected bounding box (pixels); empty without triangles.
+  const Eigen::AlignedBox2d& box() const { return box_; }
+  // Projected corners of each triangle, in the order given.
+  const std::vector<std::array<Eigen::Vector2d, 3>>& pixels() const { return pixel_; }
+
+ private:
+  int cell(double v, double lo, double hi) const;
+
+  std::vector<Eigen::Matrix3d> world_;
+  std::vector<std::array<Eigen::Vector2d, 3>> pixel_;
+  Camera camera_;
+  Eigen::AlignedBox2d box_;
+  int cells_ = 1;
+  std::vector<std::vector<int>> grid_;
+};
+
+}  // namespace wisp::sim
