@@ -68,7 +68,7 @@ TEST_CASE("eye rays against triangles meet the head where the analytic ellipsoid
           "[sim][scalp]") {
   HeadGeometry head;
   const BodyModel model(head, [] {
-    BodyParams b;
+    BodyParams b = body_params(HeadParams{});
     b.neck = b.torso = false;
     b.slices = 96;
     b.stacks = 48;
@@ -113,7 +113,7 @@ TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden b
   std::vector<Vector3d> roots;
   for (const Polyline& s : generate_hair(hair, shape)) roots.push_back(s.front());
   auto scalp = std::make_shared<const Scalp>(roots);
-  BodyParams b;
+  BodyParams b = body_params(HeadParams{});
   b.neck = b.torso = false;
   const BodyModel model(head, b);
   CameraParams cp;
