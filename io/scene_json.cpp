@@ -357,6 +357,14 @@ void parse_ink(Fields& f, vector::HairStyle& st) {
   f.get("fit_tolerance", k.fit_tolerance);
 }
 
+void parse_base(Fields& f, vector::HairStyle& st) {
+  vector::BaseStyle& b = st.base;
+  f.get("enabled", b.enabled);
+  f.get("tone", b.tone);
+  f.get("spread", b.spread);
+  f.get("level", b.level);
+}
+
 // A nested object of the style, parsed by `parse` and checked for unknown keys.
 template <void (*parse)(Fields&, vector::HairStyle&)>
 void style_object(Fields& f, const char* k, vector::HairStyle& s) {
@@ -409,6 +417,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"shading", style_object<parse_shading>},
       {"highlights", style_object<parse_highlights>},
       {"ink", style_object<parse_ink>},
+      {"base", style_object<parse_base>},
   };
   return table;
 }

@@ -73,6 +73,9 @@ struct Resolver {
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
+  // The hair base's segments carry this id; as a face's front it is n_wisps().
+  int base_id() const { return n_wisps() + int(options.occluders.size()); }
+  bool is_base_front(int f) const { return front[f] == n_wisps(); }
 
   template <class F>
   void for_each_ccb(int f, F&& fn) const {
@@ -167,20 +170,28 @@ struct Resolver {
       if (cover[f].empty() && !options.keep_faces) continue;
       sample[f] = interior_point(f);
       in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
-      if (cover[f].empty() || cover[f].front().first >= n_wisps()) continue;  // no wisp
+      if (cover[f].empty()) continue;
       // Front-most by depth at the sample point; ties go to the lower wisp index. An occluder
-      // in front of every wisp makes the face its own: not hair.
+      // in front of every wisp makes the face its own: not hair, unless the hair base covers
+      // the face and is nearer than that occluder (it lies on the head, behind every wisp).
       double best = INFINITY;
+      bool on_base = false;
       for (const auto& [w, _] : cover[f]) {
+        if (w == base_id()) {
+          on_base = true;
+          continue;
+        }
         const double z = w < n_wisps() ? band_depth(wisps[w], cells[w], sample[f]).depth
                                        : options.occluders[w - n_wisps()].depth(sample[f]);
         if (z < best) best = z, front[f] = w;
       }
-      front_depth[f] = best;
-      if (front[f] >= n_wisps()) {
+      if (front[f] < 0 || front[f] >= n_wisps()) {
         front[f] = -1;
-        continue;
+        const double zb = on_base ? options.base.depth(sample[f]) : INFINITY;
+        if (!(zb < best)) continue;
+        front[f] = n_wisps(), best = zb;
       }
+      front_depth[f] = best;
       hair[f] = in_view[f];
     }
   }
@@ -199,9 +210,14 @@ struct Resolver {
       const int fl = map.halfedges[2 * e].face, fr = map.halfedges[2 * e + 1].face;
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        const int w = seg.wisp;
-        if (!is_wisp(w)) continue;
+        int w = seg.wisp;
+        if (w == base_id()) w = n_wisps();
+        if (!is_wisp(w) && w != n_wisps()) continue;
         bool vis = (hair[fl] && front[fl] == w) || (hair[fr] && front[fr] == w);
+        if (w == n_wisps()) {
+          visible[i] = vis;
+          continue;
+        }
         if (vis && winding(cover[fl], w) != 0 && winding(cover[fr], w) != 0) {
           const Vector2d m =
               0.5 * (map.vertices[map.source(2 * e)] + map.vertices[map.halfedges[2 * e].target]);
@@ -216,24 +232,26 @@ struct Resolver {
     }
   }
 
-  std::vector<std::vector<std::pair<double, double>>> visible_intervals() const {
+  // Per wisp (or, for the hair base, per path): the visible parameter intervals of its outline.
+  std::vector<std::vector<std::pair<double, double>>> visible_intervals(bool base) const {
     struct Piece {
       double lo, hi;
       bool visible;
     };
-    std::vector<std::vector<Piece>> pieces(wisps.size());
+    std::vector<std::vector<Piece>> pieces(base ? options.base.rings.size() : wisps.size());
     for (int e = 0; e < map.edge_count(); ++e) {
       const Vector2d &a = map.vertices[map.source(2 * e)],
                      &b = map.vertices[map.halfedges[2 * e].target];
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        if (!is_wisp(seg.wisp)) continue;
+        if (base ? seg.wisp != base_id() : !is_wisp(seg.wisp)) continue;
         const double sa = s_at(seg, a), sb = s_at(seg, b);
-        pieces[seg.wisp].push_back({std::min(sa, sb), std::max(sa, sb), visible[i] != 0});
+        pieces[base ? seg.ring : seg.wisp].push_back(
+            {std::min(sa, sb), std::max(sa, sb), visible[i] != 0});
       }
     }
-    std::vector<std::vector<std::pair<double, double>>> out(wisps.size());
-    for (size_t w = 0; w < wisps.size(); ++w) {
+    std::vector<std::vector<std::pair<double, double>>> out(pieces.size());
+    for (size_t w = 0; w < pieces.size(); ++w) {
       auto& p = pieces[w];
       std::sort(p.begin(), p.end(), [](const Piece& x, const Piece& y) {
         return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
@@ -305,7 +323,8 @@ struct Resolver {
         vf.holes.push_back(ring(map.holes[i]));
       for (const auto& c : cover[f])
         if (is_wisp(c.first)) vf.cover.push_back(c);
-      vf.front = hair[f] ? front[f] : -1;
+      vf.base = hair[f] && is_base_front(f);
+      vf.front = hair[f] && !vf.base ? front[f] : -1;
       vf.front_depth = front_depth[f];
       vf.sample = sample[f];
       vf.in_view = in_view[f];
@@ -322,10 +341,16 @@ struct Resolver {
       ve.face_right = map.halfedges[2 * e + 1].face;
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        // Occluder k appears as source -2 - k.
-        ViewEdgeSource s{is_wisp(seg.wisp) || seg.wisp < 0 ? seg.wisp : -2 - (seg.wisp - n_wisps()),
-                         seg.side, 0, 0, visible[i] != 0};
-        if (is_wisp(seg.wisp)) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
+        // Occluder k appears as source -2 - k, the hair base as -1 with `base` set.
+        const bool base = seg.wisp == base_id();
+        ViewEdgeSource s{is_wisp(seg.wisp) || seg.wisp < 0 || base ? (base ? -1 : seg.wisp)
+                                                                   : -2 - (seg.wisp - n_wisps()),
+                         seg.side,
+                         0,
+                         0,
+                         visible[i] != 0,
+                         base};
+        if (is_wisp(seg.wisp) || base) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
         ve.sources.push_back(s);
       }
       const bool hl = hair[ve.face_left], hr = hair[ve.face_right];
@@ -382,6 +407,28 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
       segments.push_back({o.ring[i], o.ring[(i + 1) % o.ring.size()], int(wisps.size() + k)});
     }
   }
+  const HairBase& base = options.base;
+  if (!base.empty() && !base.depth)
+    throw std::invalid_argument("arrangement: the hair base needs a depth function");
+  if (base.rings.size() != base.ring_s.size())
+    throw std::invalid_argument("arrangement: the hair base needs a parameter per ring vertex");
+  const int base_id = int(wisps.size() + options.occluders.size());
+  for (int r = 0; r < int(base.rings.size()); ++r) {
+    const auto& ring = base.rings[r];
+    const auto& s = base.ring_s[r];
+    if (ring.size() != s.size())
+      throw std::invalid_argument("arrangement: hair base ring " + std::to_string(r) +
+                                  ": one parameter per vertex expected");
+    for (size_t i = 0; i < ring.size(); ++i) {
+      if (!ring[i].allFinite())
+        throw std::invalid_argument("arrangement: hair base ring " + std::to_string(r) +
+                                    ": point " + std::to_string(i) + " is not finite");
+      OutlineSegment seg{ring[i], ring[(i + 1) % ring.size()],         base_id, Side::Left,
+                         s[i],    i + 1 < ring.size() ? s[i + 1] : 1.0};
+      seg.ring = r;
+      segments.push_back(seg);
+    }
+  }
   if (options.clip_to_view) {
     const auto& v = options.view;
     const Vector2d c[4] = {v.corner(v.BottomLeft), v.corner(v.BottomRight), v.corner(v.TopRight),
@@ -396,13 +443,20 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   r.propagate_cover();
   r.order_faces();
   r.decide_visibility();
-  out.visible = r.visible_intervals();
+  out.visible = r.visible_intervals(false);
   out.mask = trace_hair_mask(map, r.hair);
   if (options.front_regions) {
     std::vector<int> label(map.faces.size(), -1);
     for (size_t f = 0; f < label.size(); ++f)
-      if (r.hair[f]) label[f] = r.front[f];
+      if (r.hair[f] && !r.is_base_front(int(f))) label[f] = r.front[f];
     out.front_regions = trace_regions(map, label, r.n_wisps());
+  }
+  if (!base.empty()) {
+    out.base_visible = r.visible_intervals(true);
+    std::vector<int> label(map.faces.size(), -1);
+    for (size_t f = 0; f < label.size(); ++f)
+      if (r.hair[f] && r.is_base_front(int(f))) label[f] = 0;
+    out.base_region = trace_regions(map, label, 1).front();
   }
 
   std::vector<int> silhouette(map.edge_count(), -1), occlusion(map.edge_count(), -1);

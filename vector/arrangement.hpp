@@ -9,6 +9,9 @@
 //    (and no other pass of the same wisp lies in front of it, for curls that overlap themselves).
 // From these follow the hair mask (union of covered faces, holes kept), the silhouette and the
 // occlusion boundaries as ink polylines, and per outline the visible parameter intervals.
+// The hair base (vector/hair_base.hpp), when given, lies behind every wisp and in front of the
+// head it is drawn on: a face inside it with no wisp in front of the occluders is hair, the
+// base's own, unless an occluder is nearer than the base there (the neck, the shoulders).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "vector/arrangement_view.hpp"
+#include "vector/hair_base.hpp"
 #include "vector/wisp.hpp"
 
 namespace wisp::vector {
@@ -43,6 +47,7 @@ struct ArrangementOptions {
   bool keep_faces = false;
   bool front_regions = false;  // fill WispArrangement::front_regions
   std::vector<Occluder> occluders;
+  HairBase base;  // empty: none
 };
 
 // A polygon with holes, vertices in pixels. The outer boundary turns counter-clockwise in (x, y)
@@ -86,6 +91,10 @@ struct WispArrangement {
   // Per input wisp: where it is the front-most wisp (hair faces only), as polygons with holes;
   // together they tile the hair mask. Only with ArrangementOptions::front_regions.
   std::vector<HairMask> front_regions;
+  // Per path of the hair base: its visible parameter intervals (where the base is front-most on
+  // either side). And where the base is front-most, as polygons with holes.
+  std::vector<std::vector<std::pair<double, double>>> base_visible;
+  HairMask base_region;
 };
 
 // Throws std::invalid_argument when clipping is on and the view is empty or not finite.

@@ -18,7 +18,8 @@ struct ViewFace {
   std::vector<Eigen::Vector2d> outer;               // empty for the unbounded face
   std::vector<std::vector<Eigen::Vector2d>> holes;  // inner boundaries
   std::vector<std::pair<int, int>> cover;           // (wisp, winding number), winding != 0
-  int front = -1;  // front-most wisp; -1 where no wisp covers the face or an occluder is nearer
+  int front = -1;     // front-most wisp; -1 where no wisp covers the face or an occluder is nearer
+  bool base = false;  // the hair base is front-most (front is -1 then, but the face is hair)
   double front_depth = 0;        // its depth at `sample`
   Eigen::Vector2d sample{0, 0};  // interior point where the depth order was decided
   bool in_view = false;          // inside the view frame (always true without clipping)
@@ -27,10 +28,11 @@ struct ViewFace {
 
 // One outline piece along an edge. Outline parameters s0 -> s1 follow the edge from `a` to `b`.
 struct ViewEdgeSource {
-  int wisp = -1;  // -1: a side of the view frame; -2 - k: occluder k
+  int wisp = -1;  // -1: a side of the view frame or the hair base; -2 - k: occluder k
   Side side = Side::Left;
   double s0 = 0, s1 = 0;
   bool visible = false;
+  bool base = false;  // a piece of the hair base's boundary (s0, s1 on its path)
 };
 
 struct ViewEdge {

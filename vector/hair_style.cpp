@@ -64,6 +64,13 @@ void validate(const InkStyle& k) {
   require(k.fit_tolerance > 0 && k.fit_tolerance <= 5, "fit_tolerance", "must be in (0, 5] pixels");
 }
 
+void validate(const BaseStyle& b) {
+  require(b.tone >= 0 && b.tone <= 1, "tone",
+          "must be in [0, 1] (0: the shadow colour, 1: the hair colour)");
+  require(b.spread >= 0.25 && b.spread <= 8, "spread", "must be in [0.25, 8] root spacings");
+  require(b.level > 0 && b.level < 1, "level", "must be in (0, 1) (a coverage level)");
+}
+
 void validate(const HairStyle& s) {
   require(s.geometry.width > 0 && s.geometry.width <= 1, "width",
           "must be a width in (0, 1] metres");
@@ -75,6 +82,7 @@ void validate(const HairStyle& s) {
   sim::validate_part(s.shading, "shading");
   sim::validate_part(s.specular, "highlights");
   sim::validate_part(s.ink, "ink");
+  sim::validate_part(s.base, "base");
   const Lighting& l = s.shading.lighting;
   require(s.shading.model != ShadingModel::Lit || l.ambient + l.kajiya_diffuse + l.lambert > 0,
           "shading", "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");

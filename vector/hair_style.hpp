@@ -92,6 +92,18 @@ struct InkStyle {
   bool enabled() const { return silhouette_width > 0 || occlusion_width > 0; }
 };
 
+// The hair base (vector/hair_base.hpp): the scalp region the roots grow from, painted under the
+// wisps. Its region is the scalp's coverage field (sim/scalp.hpp) above `level`; its colour is
+// `tone` of the way from the shadow colour to the hair colour, or with a toon ramp the ramp's
+// colour at x = tone (its middle row), so it reads as the dark base coat of the hair's own
+// palette. Inside, the solve blends it with the shadow colour that the wisps' outsides carry.
+struct BaseStyle {
+  bool enabled = true;
+  double tone = 0.6;
+  double spread = 1.0;  // the coverage kernel's width, in root spacings
+  double level = 0.5;   // the hairline: lower reaches farther beyond the outermost roots
+};
+
 struct HairStyle {
   // A wisp stands for a clump of hair: about 2.8 cm wide at the root, so that some 150 guides
   // cover a head.
@@ -109,6 +121,7 @@ struct HairStyle {
   ShadingStyle shading;
   HighlightStyle specular;
   InkStyle ink;
+  BaseStyle base;
 };
 
 // Each throws std::invalid_argument("field: what") for the first field out of its range, the
@@ -118,6 +131,7 @@ struct HairStyle {
 void validate(const ShadingStyle& shading);  // with its Lighting, whose fields sit beside its own
 void validate(const HighlightStyle& highlights);
 void validate(const InkStyle& ink);
+void validate(const BaseStyle& base);
 void validate(const HairStyle& style);
 
 }  // namespace wisp::vector

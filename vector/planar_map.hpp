@@ -13,13 +13,15 @@ namespace wisp::vector {
 
 // One input segment of the arrangement: a piece of a flattened wisp outline, directed along the
 // outline (wisp interior on its left in CGAL's orientation), or a side of the view frame (wisp
-// -1). Outline parameter and depth are linear along it.
+// -1). Outline parameter and depth are linear along it. Occluders and the hair base follow the
+// wisps' indices; a segment of the hair base knows its path (`ring`) and that path's parameter.
 struct OutlineSegment {
   Eigen::Vector2d a, b;
   int wisp = -1;
   Side side = Side::Left;
   double s0 = 0, s1 = 0;
   double z0 = 0, z1 = 0;
+  int ring = 0;
 };
 
 // Index-based doubly connected edge list. Edge e owns halfedges 2e and 2e+1 (twins: h ^ 1). A

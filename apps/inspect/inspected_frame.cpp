@@ -35,7 +35,7 @@ InspectFrame FrameSource::render(int k) {
     const std::vector<float>* warm =
         prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
     solved_[j] = render::render_frame(frames_.projected[j], {}, render::frame_occluders(frames_, j),
-                                      setup_, warm)
+                                      render::frame_base(frames_, j), setup_, warm)
                      .solution;
   }
 
@@ -55,7 +55,8 @@ InspectFrame FrameSource::render(int k) {
   const std::vector<float>* warm =
       k > first && prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
   out.result = render::render_frame(frames_.projected[k], render::frame_body(frames_, k),
-                                    render::frame_occluders(frames_, k), setup, warm);
+                                    render::frame_occluders(frames_, k),
+                                    render::frame_base(frames_, k), setup, warm);
   solved_[k] = out.result.solution;
   out.image = render::rasterize_frame(out.result.picture);
   out.mask = render::rasterize_mask(out.result.arrangement.mask, out.width(), out.height());

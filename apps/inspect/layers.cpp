@@ -104,7 +104,7 @@ void paint_faces(cairo_t* cr, const vector::ArrangementView& view, const ViewTra
   std::vector<std::vector<Vec2>> rings;
   int number = 0;
   for (const vector::ViewFace& f : view.faces) {
-    if (f.front < 0 || !f.in_view || f.outer.empty()) continue;
+    if ((f.front < 0 && !f.base) || !f.in_view || f.outer.empty()) continue;
     rings.assign(1, f.outer);
     rings.insert(rings.end(), f.holes.begin(), f.holes.end());
     for (auto& r : rings)

@@ -113,11 +113,14 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
   } else {
     const vector::ViewFace& face = view.faces[fi];
     if (face.cover.empty()) {
-      out.push_back(format("face %d: not covered%s%s", fi, face.unbounded ? ", unbounded" : "",
-                           face.in_view ? "" : ", outside the view"));
+      out.push_back(
+          format("face %d: %s%s%s", fi, face.base ? "the hair base, no wisp" : "not covered",
+                 face.unbounded ? ", unbounded" : "", face.in_view ? "" : ", outside the view"));
     } else {
-      // Covered by wisps but no front wisp: an occluder (head, body) is nearer than all of them.
+      // Covered by wisps but no front wisp: an occluder (head, body) is nearer than all of them,
+      // and the hair base on the head may show there.
       const std::string front = face.front >= 0 ? format("front-most wisp %d", face.front)
+                                : face.base     ? std::string("all behind the head: the hair base")
                                                 : std::string("all behind the body (occluder)");
       out.push_back(format("face %d: covered by %d wisp%s, %s%s", fi, int(face.cover.size()),
                            face.cover.size() == 1 ? "" : "s", front.c_str(),
@@ -146,6 +149,11 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
                          best_d, e.a.x(), e.a.y(), e.b.x(), e.b.y(),
                          e.silhouette ? ", silhouette" : "", e.occlusion ? ", occlusion" : ""));
     for (const vector::ViewEdgeSource& s : e.sources) {
+      if (s.base) {
+        out.push_back(format("  source: the hair base, s %.5f -> %.5f, %s", s.s0, s.s1,
+                             s.visible ? "visible" : "hidden"));
+        continue;
+      }
       if (s.wisp < 0) {
         out.push_back("  source: a side of the view frame");
         continue;
@@ -205,8 +213,9 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
     faces.push_back({{"id", i},
                      {"unbounded", face.unbounded},
                      {"in_view", face.in_view},
-                     {"covered", face.front >= 0 && face.in_view},
-                     {"occluded", face.front < 0 && !face.cover.empty()},
+                     {"covered", (face.front >= 0 || face.base) && face.in_view},
+                     {"base", face.base},
+                     {"occluded", face.front < 0 && !face.base && !face.cover.empty()},
                      {"outer", ring(face.outer)},
                      {"holes", std::move(holes)},
                      {"cover", std::move(cover)},
@@ -222,7 +231,9 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
     nlohmann::json sources = nlohmann::json::array();
     for (const vector::ViewEdgeSource& s : e.sources)
       sources.push_back({{"wisp", s.wisp},
-                         {"side", s.wisp < 0 ? "frame" : vector::to_string(s.side)},
+                         {"side", s.base       ? "base"
+                                  : s.wisp < 0 ? "frame"
+                                               : vector::to_string(s.side)},
                          {"s", {s.s0, s.s1}},
                          {"visible", s.visible}});
     edges.push_back({{"id", i},

@@ -1,6 +1,6 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
-// (skin tones, then the face's lines), the smooth-shaded hair clipped by the hair mask, ink
-// strokes. The same picture is written as
+// (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
+// mask (the base is part of it), ink strokes. The same picture is written as
 // a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
 // image clipped by the silhouette, or flat per-wisp gradients).
 #pragma once
@@ -72,7 +72,11 @@ struct FramePicture {
   std::vector<InkStroke> face;  // facial features, drawn on the body (under the hair)
   diffusion::Image hair;        // full-frame smooth shading (may be empty: no hair)
   vector::HairMask mask;        // where the hair image shows
-  std::vector<InkStroke> ink;   // on top of everything
+  // Where the hair base shows (inside the mask) and its colour: its own layer in SVGs, under the
+  // hair (in PNGs the hair image covers it).
+  vector::HairMask base;
+  Rgb base_color = Rgb::Zero();
+  std::vector<InkStroke> ink;  // on top of everything
   // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
   // --svg-style flat.
   std::vector<diffusion::BezierPath> outlines;

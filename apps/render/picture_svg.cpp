@@ -1,8 +1,9 @@
-// Frames as SVG: real paths for everything that is geometry (body, hair silhouette as a clip
-// path, ink strokes, the wisp outlines in a hidden debug group) and the smooth shading either
-// embedded as a PNG clipped by the silhouette, or, in the flat style, one gradient-filled path
-// per visible wisp region. Written by hand: a plain text format whose structure (ids, groups,
-// hidden layers) we control, which rsvg, Inkscape and browsers all read.
+// Frames as SVG: real paths for everything that is geometry (body, the hair base as a flat
+// layer of its own, hair silhouette as a clip path, ink strokes, the wisp outlines in a hidden
+// debug group) and the smooth shading either embedded as a PNG clipped by the silhouette, or, in
+// the flat style, one gradient-filled path per visible wisp region. Written by hand: a plain text
+// format whose structure (ids, groups, hidden layers) we control, which rsvg, Inkscape and browsers
+// all read.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -163,6 +164,10 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   }
   o << " </g>\n";
   ink_group(o, "face", pic.face);  // on the head, under the hair
+
+  if (!pic.base.polygons.empty())
+    o << " <g id=\"hair-base\" fill-rule=\"evenodd\">\n  <path d=\"" << mask_path(pic.base)
+      << "\" fill=\"" << hex(pic.base_color) << "\"/>\n </g>\n";
 
   const std::string silhouette = mask_path(pic.mask);
   if (style == SvgStyle::Embedded) {

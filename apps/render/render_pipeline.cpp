@@ -6,6 +6,7 @@
 #include "diffusion/antialias.hpp"
 #include "diffusion/rasterize.hpp"
 #include "diffusion/timer.hpp"
+#include "vector/hair_base.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/polygon.hpp"
 
@@ -96,8 +97,8 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
 }  // namespace
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
-                         std::vector<vector::Occluder> occluders, const FrameSetup& setup,
-                         const std::vector<float>* warm_start) {
+                         std::vector<vector::Occluder> occluders, vector::HairBase base,
+                         const FrameSetup& setup, const std::vector<float>* warm_start) {
   const auto t_start = Clock::now();
   FrameResult r;
   const int W = frame.width, H = frame.height;
@@ -115,6 +116,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   arr.keep_faces = setup.keep_faces || vector::needs_visible_regions(setup.style);
   arr.front_regions = setup.flat_regions;
   arr.occluders = std::move(occluders);
+  arr.base = std::move(base);
   r.arrangement = vector::build_arrangement(r.wisps, arr);
   r.time.arrangement = ms_since(t0);
 
@@ -122,6 +124,11 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   vector::HairCurves hc = vector::shade_hair(frame, r.wisps, r.arrangement, setup.style);
   r.curves = std::move(hc.curves);
   r.curve_stats = hc.stats;
+  // The hair base: its own region under the wisps, after their curves (outline_of stays valid).
+  const Rgb base_color = vector::base_color(setup.style);
+  for (diffusion::DiffusionCurve& c :
+       vector::base_curves(arr.base, r.arrangement.base_visible, base_color))
+    r.curves.push_back(std::move(c)), ++r.base_curves;
   r.time.curves = ms_since(t0);
 
   FramePicture& pic = r.picture;
@@ -131,6 +138,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   pic.body = std::move(body.paths);
   pic.face = std::move(body.face);
   pic.mask = r.arrangement.mask;
+  pic.base = r.arrangement.base_region;
+  pic.base_color = base_color;
   for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.outline.points});
   if (setup.flat_regions)
     pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);

@@ -1,5 +1,6 @@
 // One frame of the main job, from projected strands to a finished picture:
-//   wisps (vector/) -> arrangement: visibility, hair mask (vector/, CGAL) -> diffusion curves
+//   wisps (vector/) -> arrangement: visibility, hair mask (vector/, CGAL), with the hair base
+//   behind the wisps (vector/hair_base.hpp) -> diffusion curves
 //   in the style: the visible outline pieces, lit by the frame's light, and curves inside the
 //   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
 //   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
@@ -43,6 +44,7 @@ struct FrameResult {
   vector::WispArrangement arrangement;
   std::vector<diffusion::DiffusionCurve> curves;  // outlines first, then curves inside wisps
   vector::HairCurveStats curve_stats;             // how many of each kind
+  int base_curves = 0;                            // the hair base's, after the others
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
   diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
@@ -55,9 +57,10 @@ struct FrameResult {
 // (apps/body_occluders.hpp). With occluders every strand becomes a whole wisp and the
 // arrangement cuts it along their silhouettes, so hair slides behind the head continuously
 // instead of losing whole samples; without, wisps keep the samples the camera marked visible.
+// `base`: the hair base of the frame (scene_frames.hpp: frame_base), or empty for none.
 // `warm_start`: the previous frame's solution (same size) or null.
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
-                         std::vector<vector::Occluder> occluders, const FrameSetup& setup,
-                         const std::vector<float>* warm_start);
+                         std::vector<vector::Occluder> occluders, vector::HairBase base,
+                         const FrameSetup& setup, const std::vector<float>* warm_start);
 
 }  // namespace wisp::render

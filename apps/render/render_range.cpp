@@ -91,7 +91,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
       const auto t_frame = Clock::now();
       FrameResult r =
           render_frame(frames.projected[k], frame_body(frames, k), frame_occluders(frames, k),
-                       setup, warm.empty() ? nullptr : &warm);
+                       frame_base(frames, k), setup, warm.empty() ? nullptr : &warm);
       warm = std::move(r.solution);
       if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
       const auto t_write = Clock::now();

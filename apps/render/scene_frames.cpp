@@ -42,6 +42,15 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
   const sim::BodyParams body = body_params(scene);
   if (body.head || body.neck || body.torso)
     out.body = std::make_shared<const sim::BodyModel>(out.anim.head, body);
+  const vector::BaseStyle& base = scene.style.base;
+  if (base.enabled && !out.anim.frames.empty()) {
+    std::vector<Eigen::Vector3d> roots = sim::local_roots(out.anim.frames.front());
+    if (!roots.empty()) {
+      out.scalp = std::make_shared<const sim::Scalp>(std::move(roots), base.spread);
+      // Any body model tessellates the head; a scene that draws no body still gets one.
+      out.head = out.body ? out.body : std::make_shared<const sim::BodyModel>(out.anim.head, body);
+    }
+  }
   return out;
 }
 
@@ -77,6 +86,25 @@ std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) 
   return body_occluders(*frames.body, frames.anim.frames.at(k).head,
                         sim::Camera::look_at(frames.scene.camera),
                         frames.scene.style.geometry.width);
+}
+
+vector::HairBase frame_base(const SceneFrames& frames, int k) {
+  if (!frames.scalp || !frames.head) return {};
+  const io::Scene& scene = frames.scene;
+  const sim::HeadPose& pose = frames.anim.frames.at(k).head;
+  const sim::Camera camera = sim::Camera::look_at(scene.camera);
+  auto view = std::make_shared<const sim::ScalpView>(
+      frames.scalp, pose, frames.head->head_triangles(pose), camera, scene.style.base.level);
+  // The head's box within the frame; the tracer pads it, so a scalp running past the frame is
+  // cut outside it.
+  Eigen::AlignedBox2d box = view->box();
+  box = box.intersection(vector::image_rect(camera.width, camera.height));
+  if (box.isEmpty()) return {};
+  vector::HairBaseOptions options;
+  options.cell_px = std::max(1.0, std::min(camera.width, camera.height) / 512.0);
+  return vector::trace_hair_base([&](const Eigen::Vector2d& p) { return view->field(p); },
+                                 [view](const Eigen::Vector2d& p) { return view->depth(p); }, box,
+                                 options);
 }
 
 std::pair<int, int> parse_size(const std::string& option, const std::string& text) {

@@ -1,7 +1,8 @@
 // From a scene file to the frames the renderer draws: the scene (with an optional image size
 // override), its animation (simulated now, or read back from a saved .wsim), every frame projected
 // in order (the occlusion hysteresis follows the frames, so frame k projects the same whichever
-// frame a tool asks for first), and per frame the body under the hair and as occluder of it. Shared
+// frame a tool asks for first), and per frame the body under the hair and as occluder of it, and
+// the hair base (the scalp under the wisps, sim/scalp.hpp, vector/hair_base.hpp). Shared
 // by `wisp render` and `wisp-inspect`, so the inspector shows exactly the frames the renderer
 // writes.
 #pragma once
@@ -20,6 +21,8 @@
 #include "sim/animation.hpp"
 #include "sim/body.hpp"
 #include "sim/projected.hpp"
+#include "sim/scalp.hpp"
+#include "vector/hair_base.hpp"
 
 namespace wisp::render {
 
@@ -35,6 +38,10 @@ struct SceneFrames {
   sim::Animation anim;
   std::vector<sim::ProjectedFrame> projected;  // one per animation frame
   std::shared_ptr<const sim::BodyModel> body;  // what render.body draws; null: nothing
+  // The scalp of the hair base and the model whose head it lies on (`body` when there is one);
+  // null when the style has no base.
+  std::shared_ptr<const sim::Scalp> scalp;
+  std::shared_ptr<const sim::BodyModel> head;
 
   int frame_count() const { return int(projected.size()); }
 };
@@ -58,6 +65,10 @@ BodyLayer frame_body(const SceneFrames& frames, int k);
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
 // the scene draws no body.
 std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k);
+
+// The hair base in frame k: the visible scalp traced on a grid of about 1/512 of the frame
+// (at least 1 px); empty when the style has none.
+vector::HairBase frame_base(const SceneFrames& frames, int k);
 
 // "WxH" -> (W, H), each side 1 to io::kMaxImageSide. Throws std::invalid_argument naming `option`.
 std::pair<int, int> parse_size(const std::string& option, const std::string& text);
