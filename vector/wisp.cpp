@@ -121,11 +121,13 @@ struct Extruder {
     return {d.y(), -d.x()};
   }
 
-  // Perspective width times the profile, before any limit.
+  // Perspective width times the profile and the root taper, before any limit.
   double free_width(int i, double v) const {
     const Span& s = spans[i];
-    const double h =
-        0.5 * style.width * focal_px / depth(i, v) * style.profile.at(s.u0 + (s.u1 - s.u0) * v);
+    const double u = s.u0 + (s.u1 - s.u0) * v;
+    const double taper =
+        u < style.root_taper ? std::sin(0.5 * M_PI * std::max(0.0, u) / style.root_taper) : 1.0;
+    const double h = 0.5 * style.width * focal_px / depth(i, v) * style.profile.at(u) * taper;
     return std::min(h, style.max_width_px);
   }
 
@@ -317,6 +319,8 @@ void validate(const WispStyle& style) {
   positive(style.max_coordinate_px, "max_coordinate_px");
   if (style.max_pieces_per_cubic < 1 || style.max_pieces_per_cubic > 4096)
     throw std::invalid_argument("wisp style: max_pieces_per_cubic must be in [1,4096]");
+  if (!(style.root_taper >= 0 && style.root_taper <= 1))
+    throw std::invalid_argument("wisp style: root_taper must be in [0, 1]");
   if (!(style.merge_distance_px >= 0))
     throw std::invalid_argument("wisp style: merge_distance_px must be >= 0");
   validate(style.profile);

@@ -30,6 +30,10 @@ namespace wisp::vector {
 struct WispStyle {
   double width = 0.01;  // full wisp width in scene units where the profile is 1
   WidthProfile profile = WidthProfile::faraj_taper();
+  // Over the first `root_taper` of the strand (its parameter, 0 root to 1 tip) the width grows
+  // from 0 to the profile's, as sin(pi/2 u / root_taper): the wisp starts at a point on the
+  // scalp instead of a cut end. 0: the profile alone.
+  double root_taper = 0.1;
   double max_width_px = 200;  // cap on the half-width, for strands very close to the eye
   // Each side's half-width <= curvature_clamp * the distance to any nearby centre of curvature
   // on that side (at the point itself: the radius of curvature); < 1 leaves margin for the

@@ -59,6 +59,7 @@ vector::Wisp band(Vector2d a, Vector2d b, double depth) {
   vector::WispStyle s;
   s.width = 0.05 * depth / 2;
   s.profile = vector::WidthProfile::constant();
+  s.root_taper = 0;
   auto w = vector::build_wisp(test::straight(0, a, b, depth, depth, 8), 800, s);
   REQUIRE(w);
   return *w;

@@ -18,6 +18,7 @@ vector::WispStyle style_with(double width) {
   vector::WispStyle s;
   s.width = width;
   s.profile = vector::WidthProfile::constant();
+  s.root_taper = 0;  // bands of exactly known width, cut square at both ends
   return s;
 }
 

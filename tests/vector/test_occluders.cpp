@@ -40,6 +40,7 @@ vector::Wisp band(double depth) {
   vector::WispStyle s;
   s.width = 0.05 * depth / 2;  // 800 px focal length: 20 px full width at any depth
   s.profile = vector::WidthProfile::constant();
+  s.root_taper = 0;
   auto w = vector::build_wisp(test::straight(0, {100, 200}, {400, 200}, depth, depth, 8), 800, s);
   REQUIRE(w);
   return *w;
@@ -99,6 +100,7 @@ TEST_CASE("an occluder's depth decides per face, and a miss counts as far", "[ve
   vector::WispStyle s;
   s.width = 0.05;
   s.profile = vector::WidthProfile::constant();
+  s.root_taper = 0;
   const auto a = vector::build_wisp(test::straight(0, {215, 100}, {215, 300}, 2, 2, 8), 800, s);
   const auto b = vector::build_wisp(test::straight(1, {245, 100}, {245, 300}, 2, 2, 8), 800, s);
   const auto arr = arrange({*a, *b}, {o});

@@ -46,6 +46,7 @@ double signed_area(const std::vector<vector::OutlineVertex>& poly) {
 vector::WispStyle wide() {
   vector::WispStyle s;
   s.width = 0.05;
+  s.root_taper = 0;  // the profile alone; the root taper has its own test
   return s;
 }
 
@@ -108,19 +109,24 @@ TEST_CASE("width profiles: Faraj's taper and Shin's sine", "[vector][wisp]") {
   CHECK_THROWS_AS(vector::validate(bad), std::invalid_argument);
 }
 
-TEST_CASE("wisp width follows perspective and the profile", "[vector][wisp]") {
+TEST_CASE("wisp width follows perspective, the profile and the root taper", "[vector][wisp]") {
   // A straight strand at constant depth 2: half-width = 0.5 * 0.05 * 800 / 2 = 10 px at the root.
   const auto s = test::straight(0, {50, 100}, {250, 100}, 2.0, 2.0, 6);
-  for (auto profile : {vector::WidthProfile::faraj_taper(), vector::WidthProfile::shin()}) {
-    auto style = wide();
-    style.profile = profile;
-    const auto w = vector::build_wisp(s, 800, style);
-    REQUIRE(w);
-    for (const auto& sec : w->sections) {
-      const double u = (sec.centre.x() - 50) / 200;
-      CHECK((sec.left - sec.right).norm() == Approx(20 * profile.at(u)).margin(0.05));
+  for (auto profile : {vector::WidthProfile::faraj_taper(), vector::WidthProfile::shin()})
+    for (double taper : {0.0, 0.3}) {
+      auto style = wide();
+      style.profile = profile;
+      style.root_taper = taper;
+      const auto w = vector::build_wisp(s, 800, style);
+      REQUIRE(w);
+      for (const auto& sec : w->sections) {
+        const double u = (sec.centre.x() - 50) / 200;
+        const double grow = u < taper ? std::sin(M_PI / 2 * u / taper) : 1.0;
+        // The width table's interpolation follows the sine's bend within a few tenths of a pixel.
+        const double margin = u < taper + 0.05 ? 0.2 : 0.05;
+        CHECK((sec.left - sec.right).norm() == Approx(20 * profile.at(u) * grow).margin(margin));
+      }
     }
-  }
   // Twice as far, half as wide.
   const auto far =
       vector::build_wisp(test::straight(0, {50, 100}, {250, 100}, 4.0, 4.0, 6), 800, wide());
@@ -150,6 +156,24 @@ TEST_CASE("outline is closed root to tip to root with the interior at winding +1
   // Side::Left is the on-screen left of travel (y down): towards (d.y, -d.x).
   const Vector2d d = Vector2d(200, 40).normalized();
   CHECK((w->sections[0].left - w->sections[0].centre).dot(Vector2d(d.y(), -d.x())) > 0);
+}
+
+TEST_CASE("a tapered root starts at a point: no root cap, no cut end", "[vector][wisp]") {
+  const auto s = test::straight(0, {50, 100}, {250, 140}, 2.0, 3.0, 6);
+  auto style = wide();
+  style.root_taper = 0.1;
+  const auto w = vector::build_wisp(s, 800, style);
+  REQUIRE(w);
+  const auto& o = w->outline;
+  CHECK(std::count(o.side.begin(), o.side.end(), vector::Side::Root) == 0);
+  CHECK(o.side.back() == vector::Side::Right);
+  CHECK(w->half_width_left.front() == 0);
+  CHECK(w->half_width_right.front() == 0);
+  CHECK(o.points.front() == s.pixel.front());  // the outline starts and ends at the root
+  CHECK((w->sections.front().left - w->sections.front().right).norm() == 0);
+  CHECK(signed_area(vector::outline_polygon(*w)) > 0);
+  // Full width from 10 % of the strand on.
+  CHECK(w->half_width_left[1] > 0);
 }
 
 TEST_CASE("band sections stay within the flattening tolerance of the outline cubics",
