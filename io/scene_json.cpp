@@ -392,11 +392,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
                                   : vector::WidthProfile::faraj_taper();
        }},
       {"root_taper",
-       [](Fields& f, const char* k, HairStyle& s) {
-         f.get(k, s.geometry.root_taper);
-         require(f, s.geometry.root_taper >= 0 && s.geometry.root_taper <= 1, k,
-                 "must be in [0, 1] (a fraction of the strand; 0: no taper)");
-       }},
+       [](Fields& f, const char* k, HairStyle& s) { f.get(k, s.geometry.root_taper); }},
       {"curvature_clamp",
        [](Fields& f, const char* k, HairStyle& s) {
          const json* v = f.find(k);

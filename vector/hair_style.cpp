@@ -74,6 +74,8 @@ void validate(const BaseStyle& b) {
 void validate(const HairStyle& s) {
   require(s.geometry.width > 0 && s.geometry.width <= 1, "width",
           "must be a width in (0, 1] metres");
+  require(s.geometry.root_taper >= 0 && s.geometry.root_taper <= 1, "root_taper",
+          "must be in [0, 1] (a fraction of the strand; 0: no taper)");
   require(s.geometry.curvature_clamp > 0, "curvature_clamp",
           "must be > 0 (null disables the clamp)");
   require(s.highlight_along >= 0 && s.highlight_along <= 1, "highlight_along", "must be in [0, 1]");
