@@ -336,11 +336,12 @@ void parse_highlights(Fields& f, vector::HairStyle& st) {
   f.color("color", h.color);
   f.get("threshold", h.threshold);
   f.get("shininess", h.shininess);
-  f.get("shin_weight", h.shin_weight);
   f.get("max_width", h.max_width);
   f.get("teeth", h.teeth);
-  f.get("link_distance", h.link_distance);
-  f.get("min_cluster", h.min_cluster);
+  f.get("band_width_deg", h.band_width_deg);
+  f.get("band_extent_deg", h.band_extent_deg);
+  f.get("band_shift_deg", h.band_shift_deg);
+  f.get("tooth_depth", h.tooth_depth);
 }
 
 void parse_ink(Fields& f, vector::HairStyle& st) {

@@ -123,6 +123,7 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
   out.focal_px = camera_.focal_px;
   out.eye = camera_.eye;
   out.light_dir = options_.light_dir;
+  out.head_up = frame.head.rotation * Vector3d::UnitY();
   out.strands.resize(frame.strands.size());
   for (std::size_t s = 0; s < frame.strands.size(); ++s) {
     const Polyline& line = frame.strands[s];

@@ -12,7 +12,8 @@
 // With ProjectorOptions::body, the drawn neck, torso and arms (sim/body.hpp) hide strands too,
 // with the same hysteresis (sphere tracing on their analytic distances, shrunk by `hysteresis`
 // for the inner test).
-// Every frame carries ProjectorOptions::light_dir (the scene's light) for shading.
+// Every frame carries ProjectorOptions::light_dir (the scene's light) and the head's crown axis
+// for shading.
 #pragma once
 
 #include <memory>

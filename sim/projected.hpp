@@ -29,6 +29,7 @@ struct ProjectedFrame {
   double focal_px = 0;  // focal length in pixels: a length L at depth z spans L*focal_px/z px
   Eigen::Vector3d eye = Eigen::Vector3d::Zero();         // camera position (world)
   Eigen::Vector3d light_dir = Eigen::Vector3d::UnitZ();  // unit direction towards the light
+  Eigen::Vector3d head_up = Eigen::Vector3d::UnitY();    // the head's crown axis (unit, world)
   std::vector<ProjectedStrand> strands;
 };
 

@@ -105,6 +105,8 @@ FrameLight frame_light(const sim::ProjectedFrame& frame, const std::vector<Wisp>
     if (!s.world.empty()) roots.push_back(s.world.front());
   FrameLight light;
   light.head_centre = head_centre_from_roots(roots);
+  for (const Vector3d& r : roots)
+    light.head_radius += (r - light.head_centre).norm() / double(roots.size());
   light.light =
       frame.light_dir.norm() > 0 ? Vector3d(frame.light_dir.normalized()) : Vector3d::UnitZ();
   double zmin = 1e300, zmax = 0;
@@ -158,18 +160,42 @@ std::optional<VisibleRegions> visible_regions(const WispArrangement& arrangement
 }
 
 // A visible wisp's outline: its inside colours lit by the shader or Faraj's colour point, the
-// shadow colour outside, active on its visible intervals.
-diffusion::DiffusionCurve outline_curve(const Wisp& wisp, const WispShader& shader,
+// shadow colour outside (the highlight colour where another wisp's highlight lies just beyond
+// it, `cover`), active on its visible intervals.
+diffusion::DiffusionCurve outline_curve(int w, const Wisp& wisp, const WispShader& shader,
                                         const std::vector<double>& samples,
                                         const std::vector<std::pair<double, double>>& visible,
-                                        const HairStyle& style) {
+                                        const HighlightCover* cover, const HairStyle& style) {
   diffusion::DiffusionCurve outline;
   outline.points = wisp.outline.points;
   outline.left = style.shading.model == ShadingModel::Lit ? outline_stops(wisp, shader, samples)
                                                           : faraj_stops(wisp, style);
-  outline.right = {{0.0, style.shadow}, {1.0, style.shadow}};
+  outline.right = cover ? cover->outside_stops(wisp, w, style.shadow, style.specular.color)
+                        : std::vector<ColorStop>{{0.0, style.shadow}, {1.0, style.shadow}};
   outline.active = visible;
   return outline;
+}
+
+// The highlights in pixels, each where its wisp shows, for the outlines in front of them; none
+// without highlights or regions.
+std::optional<HighlightCover> highlight_cover(const WispCharts& charts,
+                                              const std::vector<std::vector<ChartPolygon>>& shapes,
+                                              const std::optional<VisibleRegions>& regions) {
+  if (!regions) return std::nullopt;
+  std::optional<HighlightCover> cover;
+  cover.emplace(*regions);
+  for (size_t w = 0; w < shapes.size(); ++w)
+    for (const ChartPolygon& p : shapes[w]) {
+      const WispChart& chart = *charts.chart[w];
+      const double step_t =
+          (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, charts.samples[w].size());
+      std::vector<Vector2d> ring;
+      for (const Vector2d& tu : densify(p, step_t, 0.1))
+        ring.push_back(chart.point(tu.x(), tu.y()));
+      cover->add(int(w), std::move(ring));
+    }
+  if (cover->empty()) return std::nullopt;
+  return cover;
 }
 
 }  // namespace
@@ -212,10 +238,11 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
                   style.shading.hard_bands ? style.shading.band_threshold : 1e9);
   const WispCharts charts = visible_wisp_charts(frame, wisps, arrangement, style);
   const std::optional<VisibleRegions> regions = visible_regions(arrangement, charts, style);
-  const std::vector<std::vector<ChartPolygon>> highlights = highlight_shapes(
-      charts.chart, charts.samples, style, light, std::min(frame.width, frame.height));
+  const std::vector<std::vector<ChartPolygon>> highlights =
+      highlight_shapes(charts.chart, charts.samples, style, light, frame);
 
   // Outlines first, in wisp order, then the curves inside the wisps.
+  const std::optional<HighlightCover> cover = highlight_cover(charts, highlights, regions);
   HairCurves result;
   result.outline_of.assign(wisps.size(), -1);
   InnerCurves inner;
@@ -223,8 +250,9 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
     if (!charts.chart[w]) continue;
     const WispShader shader(*charts.chart[w], style, light, bands ? &*bands : nullptr);
     result.outline_of[w] = int(result.curves.size());
-    result.curves.push_back(
-        outline_curve(wisps[w], shader, charts.samples[w], arrangement.visible[w], style));
+    result.curves.push_back(outline_curve(w, wisps[w], shader, charts.samples[w],
+                                          arrangement.visible[w], cover ? &*cover : nullptr,
+                                          style));
     ++result.stats.outlines;
     if (regions)
       add_inner_curves({w, charts.chart[w].get(), &charts.samples[w], &shader, &highlights[w]},

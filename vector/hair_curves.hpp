@@ -7,7 +7,9 @@
 // shade_hair: every style. With lit shading the inside colours come from the light on the wisp
 // as a tube (vector/wisp_shader.hpp) at the outline (u = +-1); after the outlines come the curves
 // inside the wisps that carry what diffusion from the outline alone cannot: centre lines, toon
-// band edges and highlights (vector/inner_curves.hpp), active only where their wisp is visible.
+// band edges and highlights (vector/inner_curves.hpp), active only where their wisp is visible. An
+// outline in front of another wisp's highlight carries the highlight colour outside instead of
+// the shadow colour, so a highlight band runs crisply from one wisp to the next.
 #pragma once
 
 #include <vector>

@@ -92,10 +92,4 @@ double lambert_peak_u(const TubeFrame& f, const Vector3d& L) {
   return b >= 0 ? a / R : (a >= 0 ? 1.0 : -1.0);
 }
 
-double shin_specular(const Vector3d& N, const Vector3d& T, const Vector3d& L, double w, double n) {
-  const Vector3d W = w * N + (1 - w) * T;
-  if (W.norm() < 1e-12) return 0;
-  return std::pow(std::max(0.0, L.dot(W.normalized())), n);
-}
-
 }  // namespace wisp::vector

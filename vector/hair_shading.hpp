@@ -87,9 +87,4 @@ double max_intensity(const Lighting& m);
 std::vector<double> lambert_iso_u(const TubeFrame& f, const Eigen::Vector3d& L, double k);
 double lambert_peak_u(const TubeFrame& f, const Eigen::Vector3d& L);
 
-// Shin's anime specular max(L.W, 0)^n with W = normalize(w N + (1 - w) T): w slides the
-// highlight along the strand (0: towards the tip, 1: towards the root when lit from above).
-double shin_specular(const Eigen::Vector3d& N, const Eigen::Vector3d& T, const Eigen::Vector3d& L,
-                     double w, double n);
-
 }  // namespace wisp::vector

@@ -37,12 +37,17 @@ void validate(const ShadingStyle& s) {
 void validate(const HighlightStyle& h) {
   require(h.threshold > 0 && h.threshold < 1, "threshold", "must be in (0, 1)");
   require(h.shininess > 0 && h.shininess <= 10000, "shininess", "must be in (0, 10000]");
-  require(h.shin_weight >= 0 && h.shin_weight <= 1, "shin_weight", "must be in [0, 1]");
   require(h.max_width > 0 && h.max_width <= 1, "max_width",
           "must be in (0, 1] (a fraction of the wisp's half-width)");
   require(h.teeth >= 1 && h.teeth <= 16, "teeth", "must be in [1, 16]");
-  require(h.link_distance >= 0, "link_distance", "must be >= 0 pixels");
-  require(h.min_cluster >= 1, "min_cluster", "must be at least 1");
+  require(h.band_width_deg > 0 && h.band_width_deg <= 90, "band_width_deg",
+          "must be in (0, 90] degrees");
+  require(h.band_extent_deg >= 1 && h.band_extent_deg <= 180, "band_extent_deg",
+          "must be in [1, 180] degrees");
+  require(h.band_shift_deg >= -90 && h.band_shift_deg <= 90, "band_shift_deg",
+          "must be in [-90, 90] degrees");
+  require(h.tooth_depth >= 0 && h.tooth_depth <= 10, "tooth_depth",
+          "must be in [0, 10] band widths");
 }
 
 void validate(const InkStyle& k) {

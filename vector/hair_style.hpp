@@ -59,14 +59,16 @@ struct HighlightStyle {
   HighlightShape shape = HighlightShape::None;
   Eigen::Vector3f color{1.0f, 0.95f, 0.85f};
   // Band: the region where the tube's Blinn term (N.H)^shininess exceeds `threshold`.
-  // Anime: samples of the centre line where Shin's max(L.W, 0)^shininess exceeds `threshold`.
   double threshold = 0.5;
   double shininess = 40;
-  double shin_weight = 0.5;   // Shin's w: W = normalize(w N + (1 - w) T)
-  double max_width = 0.8;     // highlights stay within |u| <= this across the wisp
-  int teeth = 2;              // anime: zigzag teeth per wisp
-  double link_distance = 28;  // anime: px (at ink reference size) between linked neighbours
-  int min_cluster = 3;        // anime: fewer linked wisps than this draw no highlight
+  double max_width = 0.8;  // highlights stay within |u| <= this across the wisp
+  // Anime: a ring on the head at H's elevation (vector/highlights.hpp), in degrees of latitude
+  // and longitude about the head's crown axis.
+  double band_width_deg = 8;    // the ring's width where it is widest
+  double band_extent_deg = 75;  // longitudes within this of H's; it closes to a point there
+  double band_shift_deg = 0;    // moves the ring up (towards the roots) or down
+  int teeth = 2;                // zigzag teeth per wisp width along its lower edge
+  double tooth_depth = 1;       // tooth length, in ring widths
 };
 
 // Ink along the silhouette and occlusion boundaries (vector/ink_strokes.hpp).

@@ -4,44 +4,49 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numeric>
 
+#include "diffusion/bezier.hpp"
 #include "vector/chart_contour.hpp"
 #include "vector/polygon.hpp"
+#include "vector/stroke_fit.hpp"
 
 namespace wisp::vector {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-std::vector<ChartPolygon> band_highlights(const WispChart& chart, const std::vector<double>& ts,
-                                          const HighlightStyle& style, const Vector3d& light) {
+namespace {
+
+// The closed regions where field(t, u) > level over the wisp, sampled at `ts` and 17 lateral
+// positions spanning |u| <= umax, plus a forced border (one row and column outside) so every
+// region closes, at the border at most. Regions below about a pixel are dropped.
+std::vector<ChartPolygon> closed_regions(const WispChart& chart, const std::vector<double>& ts,
+                                         double umax, double level,
+                                         const std::function<double(double, double)>& field) {
   std::vector<ChartPolygon> out;
   if (ts.size() < 3) return out;
-  const double umax = std::clamp(style.max_width, 0.05, 1.0);
   const int nu = 17;
   ChartGrid g;
   g.t = ts;
-  for (int j = 0; j < nu; ++j) g.u.push_back(-umax + 2 * umax * j / (nu - 1));
-  g.value.resize(g.t.size() * nu);
-  const auto field = [&](const TubeFrame& f, double u) {
-    return blinn(tube_normal(f, u), light, f.V, style.shininess);
-  };
-  for (size_t i = 0; i < g.t.size(); ++i) {
-    const TubeFrame f = chart.frame(g.t[i]);
-    for (int j = 0; j < nu; ++j) {
-      const bool border = i == 0 || i + 1 == g.t.size() || j == 0 || j + 1 == nu;
-      g.value[i * nu + j] = border ? -1.0 : field(f, g.u[j]);
+  const double du = 2 * umax / (nu - 1);
+  g.u.push_back(-umax - du);
+  for (int j = 0; j < nu; ++j) g.u.push_back(-umax + j * du);
+  g.u.push_back(umax + du);
+  const size_t n = g.u.size();
+  g.value.resize(g.t.size() * n);
+  const double outside = level - 1;
+  for (size_t i = 0; i < g.t.size(); ++i)
+    for (size_t j = 0; j < n; ++j) {
+      const bool border = i == 0 || i + 1 == g.t.size() || j == 0 || j + 1 == n;
+      g.value[i * n + j] = border ? outside : field(g.t[i], g.u[j]);
     }
-  }
-  const double tb = g.t[1], te = g.t[g.t.size() - 2], ub = g.u[1], ue = g.u[nu - 2];
+  const double tb = g.t[1], te = g.t[g.t.size() - 2];
   const auto exact = [&](double t, double u) {
-    if (t < tb || t > te || u < ub || u > ue) return -1.0;  // the forced border
-    return field(chart.frame(t), u);
+    if (t < tb || t > te || u < -umax || u > umax) return outside;  // the forced border
+    return field(t, u);
   };
-  for (ChartContour& c : chart_contours(g, style.threshold, exact)) {
+  for (ChartContour& c : chart_contours(g, level, exact)) {
     if (!c.closed || c.tu.size() < 3) continue;
-    // Specks below about a pixel are not worth a curve.
     double area_px = 0;
     for (size_t i = 0, j = c.tu.size() - 1; i < c.tu.size(); j = i++) {
       const Vector2d a = chart.point(c.tu[j].x(), c.tu[j].y()),
@@ -55,87 +60,148 @@ std::vector<ChartPolygon> band_highlights(const WispChart& chart, const std::vec
   return out;
 }
 
-std::optional<AnimeCandidate> anime_candidate(const WispChart& chart, const std::vector<double>& ts,
-                                              const HighlightStyle& style, const Vector3d& light,
-                                              const Vector3d& head_centre) {
-  if (ts.size() < 2) return std::nullopt;
-  std::vector<double> v(ts.size());
-  for (size_t i = 0; i < ts.size(); ++i) {
-    const Vector3d T = chart.tangent(ts[i]);
-    Vector3d out = chart.world(ts[i]) - head_centre;
-    out -= out.dot(T) * T;
-    const Vector3d N = out.norm() > 1e-12 ? Vector3d(out.normalized()) : chart.frame(ts[i]).C;
-    v[i] = shin_specular(N, -T, light, style.shin_weight, style.shininess);
-  }
-  const size_t peak = size_t(std::max_element(v.begin(), v.end()) - v.begin());
-  if (!(v[peak] > style.threshold)) return std::nullopt;
-  size_t a = peak, b = peak;
-  while (a > 0 && v[a - 1] > style.threshold) --a;
-  while (b + 1 < v.size() && v[b + 1] > style.threshold) ++b;
-  // The crossings, interpolated between samples.
-  const auto cross = [&](size_t in, size_t out) {
-    const double f = (v[in] - style.threshold) / std::max(1e-12, v[in] - v[out]);
-    return ts[in] + std::clamp(f, 0.0, 1.0) * (ts[out] - ts[in]);
-  };
-  AnimeCandidate c;
-  c.t0 = a > 0 ? cross(a, a - 1) : ts[a];
-  c.t1 = b + 1 < v.size() ? cross(b, b + 1) : ts[b];
-  c.t_peak = ts[peak];
-  // A stretch that runs over most of the wisp is a sheen, not a highlight: keep its middle part.
-  const double span = chart.t_end() - chart.t_begin(), longest = 0.3 * span;
-  if (c.t1 - c.t0 > longest) {
-    c.t0 = std::max(c.t0, c.t_peak - 0.5 * longest);
-    c.t1 = std::min(c.t1, c.t0 + longest);
-    c.t0 = c.t1 - longest;
-  }
-  const double shortest = 0.06 * span;
-  if (c.t1 - c.t0 < shortest) {
-    const double m = 0.5 * (c.t0 + c.t1);
-    c.t0 = std::max(chart.t_begin(), m - 0.5 * shortest);
-    c.t1 = std::min(chart.t_end(), c.t0 + shortest);
-  }
-  c.peak_px = chart.point(c.t_peak, 0);
-  return c;
+double umax_of(const HighlightStyle& style) {
+  return std::clamp(style.max_width, 0.05, 1.0);
 }
 
-std::vector<int> cluster_candidates(const std::vector<AnimeCandidate>& cands, double link_px,
-                                    int min_cluster) {
-  const int n = int(cands.size());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  const std::function<int(int)> root = [&](int i) {
-    return parent[i] == i ? i : parent[i] = root(parent[i]);
-  };
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      if ((cands[i].peak_px - cands[j].peak_px).norm() <= link_px) {
-        const int a = root(i), b = root(j);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      }
-  std::vector<int> size(n, 0), out(n, -1);
-  for (int i = 0; i < n; ++i) ++size[root(i)];
-  for (int i = 0; i < n; ++i)
-    if (size[root(i)] >= std::max(1, min_cluster)) out[i] = root(i);
+}  // namespace
+
+std::vector<ChartPolygon> band_highlights(const WispChart& chart, const std::vector<double>& ts,
+                                          const HighlightStyle& style, const Vector3d& light) {
+  return closed_regions(chart, ts, umax_of(style), style.threshold, [&](double t, double u) {
+    const TubeFrame f = chart.frame(t);
+    return blinn(tube_normal(f, u), light, f.V, style.shininess);
+  });
+}
+
+double AnimeBand::field(const Vector3d& p) const {
+  const Vector3d d = p - centre;
+  const double r = d.norm();
+  if (!(r > 0)) return -1;
+  const Vector3d n = d / r;
+  const double lat = std::asin(std::clamp(n.dot(up), -1.0, 1.0));
+  const double lon = std::atan2(n.dot(side), n.dot(front));
+  // Widest at H's longitude, closing to a point at +-extent.
+  const double x = lon / extent;
+  const double half = half_width * std::sqrt(std::max(0.0, 1 - x * x));
+  // Teeth below the lower edge: a triangle wave in longitude, its tips between valleys at
+  // multiples of the period from H's longitude.
+  const double phase = lon / period - std::floor(lon / period);
+  const double tip = 1 - std::abs(2 * phase - 1);
+  const double low = latitude - half - tooth * 2 * half * tip, high = latitude + half;
+  return std::min({lat - low, high - lat, extent - std::abs(lon)});
+}
+
+AnimeBand anime_band(const HighlightStyle& style, const sim::ProjectedFrame& frame,
+                     const Vector3d& head_centre, double head_radius, double wisp_width) {
+  AnimeBand b;
+  b.centre = head_centre;
+  b.up = frame.head_up.norm() > 0 ? Vector3d(frame.head_up.normalized()) : Vector3d::UnitY();
+  const Vector3d L =
+      frame.light_dir.norm() > 0 ? Vector3d(frame.light_dir.normalized()) : Vector3d::UnitZ();
+  const Vector3d V = (frame.eye - head_centre).norm() > 0
+                         ? Vector3d((frame.eye - head_centre).normalized())
+                         : Vector3d::UnitZ();
+  Vector3d H = L + V;
+  H = H.norm() > 1e-9 ? Vector3d(H.normalized()) : V;
+  // H's horizontal direction; with H along the crown axis, the eye's.
+  Vector3d front = H - H.dot(b.up) * b.up;
+  if (front.norm() < 1e-6) front = V - V.dot(b.up) * b.up;
+  if (front.norm() < 1e-6) front = b.up.unitOrthogonal();
+  b.front = front.normalized();
+  b.side = b.up.cross(b.front);
+  const double deg = M_PI / 180;
+  b.latitude = std::asin(std::clamp(H.dot(b.up), -1.0, 1.0)) + style.band_shift_deg * deg;
+  b.half_width = 0.5 * style.band_width_deg * deg;
+  b.extent = std::max(1.0, style.band_extent_deg) * deg;
+  b.period = std::max(1e-3, wisp_width / std::max(1e-6, head_radius)) / std::max(1, style.teeth);
+  b.tooth = style.tooth_depth;
+  b.focal_px = frame.focal_px > 0 ? frame.focal_px : 1;
+  return b;
+}
+
+std::vector<ChartPolygon> anime_highlights(const WispChart& chart, const std::vector<double>& ts,
+                                           const HighlightStyle& style, const AnimeBand& band) {
+  // A point of the wisp's surface: the centre line offset across by the wisp's half-width in
+  // scene units along the tube's lateral axis, which projects onto the on-screen u direction.
+  return closed_regions(chart, ts, umax_of(style), 0.0, [&](double t, double u) {
+    const double half_px = 0.5 * (chart.point(t, 1) - chart.point(t, -1)).norm();
+    const double half = half_px * chart.depth(t) / band.focal_px;
+    return band.field(chart.world(t) + u * half * chart.frame(t).B);
+  });
+}
+
+std::vector<Vector2d> densify(const ChartPolygon& poly, double step_t, double step_u) {
+  std::vector<Vector2d> out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
+    const int n = std::max({1, int(std::ceil(std::abs(b.x() - a.x()) / step_t)),
+                            int(std::ceil(std::abs(b.y() - a.y()) / step_u))});
+    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * (double(k) / n));
+  }
   return out;
 }
 
-ChartPolygon anime_zigzag(const AnimeCandidate& c, const HighlightStyle& style) {
-  const double umax = std::clamp(style.max_width, 0.05, 1.0);
-  const int n = std::max(1, style.teeth);
-  const double len = c.t1 - c.t0;
-  ChartPolygon p;
-  // Lower (tip-side) edge, u ascending: teeth reach t1, valleys at 45% of the length.
-  for (int j = 0; j <= 2 * n; ++j) {
-    const double u = -umax + umax * j / n;
-    p.emplace_back(j % 2 ? c.t1 : c.t0 + 0.55 * len, u);
+void HighlightCover::add(int wisp, std::vector<Vector2d> ring) {
+  if (ring.size() < 3) return;
+  Ring r{wisp, std::move(ring), {}};
+  for (const Vector2d& p : r.points) r.box.extend(p);
+  rings_.push_back(std::move(r));
+}
+
+bool HighlightCover::contains(const Vector2d& p, int except) const {
+  for (const Ring& r : rings_)
+    if (r.wisp != except && r.box.contains(p) && inside_polygon(r.points, p) &&
+        regions_.contains(r.wisp, p))
+      return true;
+  return false;
+}
+
+std::vector<diffusion::ColorStop> HighlightCover::outside_stops(
+    const Wisp& wisp, int w, const Eigen::Vector3f& shadow,
+    const Eigen::Vector3f& highlight) const {
+  const diffusion::BezierPath& path = wisp.outline;
+  std::vector<diffusion::ColorStop> plain = {{0.0, shadow}, {1.0, shadow}};
+  Eigen::AlignedBox2d near;
+  for (const Ring& r : rings_)
+    if (r.wisp != w) near.extend(r.box);
+  if (rings_.empty() || path.piece_count() == 0 || !near.intersects(wisp.bounds)) return plain;
+  // The point 0.75 px outside the outline at s: the interior lies on diffusion's left of the
+  // path, so outside is its right, (d.y, -d.x).
+  const auto beyond = [&](double s) -> Vector2d {
+    const double e = 1e-5;
+    const Vector2d d =
+        diffusion::eval(path, std::min(1.0, s + e)) - diffusion::eval(path, std::max(0.0, s - e));
+    if (!(d.norm() > 0)) return diffusion::eval(path, s);
+    return diffusion::eval(path, s) + 0.75 * Vector2d(d.y(), -d.x()).normalized();
+  };
+  const auto lit = [&](double s) { return contains(beyond(s), w); };
+  double length = 0;
+  for (size_t i = 1; i < path.points.size(); ++i)
+    length += (path.points[i] - path.points[i - 1]).norm();
+  const int m = std::max(16, int(std::ceil(length)));
+  std::vector<diffusion::ColorStop> out;
+  bool prev = lit(0);
+  bool any = prev;
+  out.push_back({0.0, prev ? highlight : shadow});
+  for (int j = 1; j <= m; ++j) {
+    const double s1 = double(j) / m;
+    const bool now = lit(s1);
+    if (now != prev) {
+      double lo = double(j - 1) / m, hi = s1;
+      for (int k = 0; k < 14; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (lit(mid) == prev ? lo : hi) = mid;
+      }
+      const double s = 0.5 * (lo + hi);
+      out.push_back({s, prev ? highlight : shadow});
+      out.push_back({s, now ? highlight : shadow});
+      prev = now;
+      any = true;
+    }
   }
-  // Upper (root-side) edge, u descending: shallow notches.
-  for (int j = 2 * n; j >= 0; --j) {
-    const double u = -umax + umax * j / n;
-    p.emplace_back(j % 2 ? c.t0 + 0.2 * len : c.t0, u);
-  }
-  if (signed_area(p) < 0) std::reverse(p.begin(), p.end());
-  return p;
+  out.push_back({1.0, prev ? highlight : shadow});
+  return any ? out : plain;
 }
 
 }  // namespace wisp::vector

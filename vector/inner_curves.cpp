@@ -187,7 +187,7 @@ void add_highlights(const WispInterior& wisp, const Clip& clip, const HairStyle&
 std::vector<std::vector<ChartPolygon>> highlight_shapes(
     const std::vector<std::unique_ptr<WispChart>>& charts,
     const std::vector<std::vector<double>>& samples, const HairStyle& style,
-    const FrameLight& light, double frame_px) {
+    const FrameLight& light, const sim::ProjectedFrame& frame) {
   const int n = int(charts.size());
   std::vector<std::vector<ChartPolygon>> highlights(n);
   if (style.specular.shape == HighlightShape::Band) {
@@ -195,21 +195,10 @@ std::vector<std::vector<ChartPolygon>> highlight_shapes(
       if (charts[w])
         highlights[w] = band_highlights(*charts[w], samples[w], style.specular, light.light);
   } else if (style.specular.shape == HighlightShape::Anime) {
-    std::vector<AnimeCandidate> cands;
-    for (int w = 0; w < n; ++w) {
-      if (!charts[w]) continue;
-      if (auto c = anime_candidate(*charts[w], samples[w], style.specular, light.light,
-                                   light.head_centre)) {
-        c->wisp = w;
-        cands.push_back(*c);
-      }
-    }
-    const double scale = frame_px / std::max(1.0, style.ink.reference_size);
-    const std::vector<int> cluster =
-        cluster_candidates(cands, style.specular.link_distance * scale, style.specular.min_cluster);
-    for (size_t i = 0; i < cands.size(); ++i)
-      if (cluster[i] >= 0)
-        highlights[cands[i].wisp].push_back(anime_zigzag(cands[i], style.specular));
+    const AnimeBand band = anime_band(style.specular, frame, light.head_centre, light.head_radius,
+                                      style.geometry.width);
+    for (int w = 0; w < n; ++w)
+      if (charts[w]) highlights[w] = anime_highlights(*charts[w], samples[w], style.specular, band);
   }
   return highlights;
 }

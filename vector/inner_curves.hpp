@@ -24,12 +24,12 @@ namespace wisp::vector {
 
 // The highlight shapes of each wisp in its chart, in the style's HighlightShape (none for None).
 // charts[w] null: wisp w is hidden and has none; samples[w]: chart t of its shading samples.
-// Anime candidates link across wisps within style.specular.link_distance, given for an image of
-// style.ink.reference_size pixels and scaled to the frame's smaller side `frame_px`.
+// The anime band is laid on the head (its centre and radius in `light`, its axis and the eye in
+// `frame`) and cut out of every wisp that crosses it.
 std::vector<std::vector<ChartPolygon>> highlight_shapes(
     const std::vector<std::unique_ptr<WispChart>>& charts,
     const std::vector<std::vector<double>>& samples, const HairStyle& style,
-    const FrameLight& light, double frame_px);
+    const FrameLight& light, const sim::ProjectedFrame& frame);
 
 // One visible wisp, as its inner curves are built from it.
 struct WispInterior {

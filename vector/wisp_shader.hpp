@@ -20,6 +20,7 @@ struct FrameLight {
   Eigen::Vector3d light{0, 0, 1};        // unit, towards the light
   double z_near = 1, z_far = 1;          // Costigan's depth range
   Eigen::Vector3d head_centre{0, 0, 0};  // for the head's outward normal (head shadow, anime)
+  double head_radius = 0;                // the roots' mean distance from head_centre
 };
 
 // The head's centre estimated from the strands' roots: the least-squares sphere through them

@@ -1,6 +1,7 @@
 // Light on wisps: the tube model's closed forms, which side of a wisp is lit, toon band edges
-// inside their wisp and only where it shows, and the highlight band where the analytic
-// Kajiya-Kay peak is, measured on the solved image.
+// inside their wisp and only where it shows, the highlight band where the analytic
+// Kajiya-Kay peak is, measured on the solved image, and the anime band on the head, one crisp
+// shape across neighbouring wisps.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -11,6 +12,7 @@
 #include "vector/arrangement.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/hair_shading.hpp"
+#include "vector/highlights.hpp"
 #include "vector/stroke_fit.hpp"
 #include "vector/wisp_chart.hpp"
 
@@ -322,4 +324,108 @@ TEST_CASE("the highlight band sits at the analytic Kajiya-Kay peak, and only wit
   for (int y = 0; y < 256; ++y)
     for (int x = 0; x < 256; ++x) green += (off.at(x, y) - Eigen::Vector3f(0, 1, 0)).norm() < 0.3;
   CHECK(green == 0);
+}
+
+TEST_CASE("the anime band lies at H's elevation about the head's axis, closes at its ends",
+          "[vector][shading][anime]") {
+  wisp::sim::ProjectedFrame frame;
+  frame.eye = Vector3d(0, 0, 2);
+  frame.light_dir = Vector3d(0, 1, 1).normalized();
+  frame.focal_px = 300;
+  v::HighlightStyle style;
+  style.band_width_deg = 10;
+  style.band_extent_deg = 60;
+  style.teeth = 2;
+  style.tooth_depth = 1;
+  const double deg = M_PI / 180;
+  for (const Vector3d& up : {Vector3d(0, 1, 0), Vector3d(0.3, 1, 0).normalized()}) {
+    frame.head_up = up;
+    const v::AnimeBand band = v::anime_band(style, frame, Vector3d::Zero(), 0.1, 0.02);
+    const Vector3d H = (frame.light_dir + Vector3d(0, 0, 1)).normalized();
+    CHECK(band.latitude == Approx(std::asin(H.dot(up))).margin(1e-12));
+    CHECK(band.period == Approx(0.2 / 2));
+    // A head direction at latitude a and longitude b about the head's axis, b = 0 towards H.
+    const auto at = [&](double a, double b) -> Vector3d {
+      return 0.1 * (std::sin(a) * band.up +
+                    std::cos(a) * (std::cos(b) * band.front + std::sin(b) * band.side));
+    };
+    const double lat = band.latitude, half = 5 * deg;
+    // At H's longitude (a valley between teeth): exactly the band's width.
+    CHECK(band.field(at(lat, 0)) == Approx(half));
+    CHECK(band.field(at(lat + half - 1e-3, 0)) > 0);
+    CHECK(band.field(at(lat + half + 1e-3, 0)) < 0);
+    CHECK(band.field(at(lat - half + 1e-3, 0)) > 0);
+    CHECK(band.field(at(lat - half - 1e-3, 0)) < 0);
+    // Half a period away, a tooth reaches down a further band width (narrowed towards the end).
+    const double b = 0.5 * band.period, narrow = std::sqrt(1 - std::pow(b / (60 * deg), 2));
+    CHECK(band.field(at(lat - half * narrow * 2.9, b)) > 0);
+    CHECK(band.field(at(lat - half * narrow * 3.1, b)) < 0);
+    // Narrower towards its ends, closed beyond them, and nowhere on the far side.
+    CHECK(band.field(at(lat, 50 * deg)) < band.field(at(lat, 20 * deg)));
+    CHECK(band.field(at(lat, 61 * deg)) < 0);
+    CHECK(band.field(at(lat, 180 * deg)) < 0);
+  }
+}
+
+TEST_CASE("the anime band runs across neighbouring wisps as one crisp shape",
+          "[vector][shading][anime]") {
+  const Camera cam;
+  // A head of radius 0.1 in front of the camera; strands run down its meridians from roots near
+  // the crown, side by side and overlapping, the roots alternating in height so that their
+  // order changes.
+  const Vector3d c(0, 0, -0.5);
+  const auto on_head = [&](double lat, double lon, double r) -> Vector3d {
+    return c + r * Vector3d(std::cos(lat) * std::sin(lon), std::sin(lat),
+                            std::cos(lat) * std::cos(lon));
+  };
+  std::vector<wisp::sim::ProjectedStrand> strands;
+  for (int k = 0; k < 9; ++k) {
+    const double lon = -0.6 + 1.2 * k / 8, top = k % 2 ? 0.9 : 1.3;
+    std::vector<Vector3d> world;
+    for (int i = 0; i <= 24; ++i) world.push_back(on_head(top - (top + 0.6) * i / 24, lon, 0.104));
+    strands.push_back(strand_of(k, world, cam));
+  }
+  auto frame = frame_of(std::move(strands), Vector3d(0, 0.4, 1), cam);
+  v::HairStyle style = lit_style();
+  style.geometry.width = 0.03;
+  style.specular.shape = v::HighlightShape::Anime;
+  style.specular.color = {0, 1, 0};
+  style.specular.max_width = 0.97;
+  const Rendered r = render(frame, style);
+  CHECK(r.curves.stats.highlights >= 5);
+  // The highlight's pixels: one 8-connected shape (a flood fill from the first one finds them
+  // all), so the pieces join across the wisps' edges without a shadow between them.
+  std::vector<int> lit(256 * 256, 0);
+  int total = 0;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x)
+      if ((r.at(x, y) - style.specular.color).norm() < 0.15) lit[y * 256 + x] = 1, ++total;
+  REQUIRE(total > 200);
+  int first = 0;
+  while (!lit[first]) ++first;
+  std::vector<int> stack = {first};
+  lit[first] = 2;
+  int reached = 0;
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    ++reached;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int x = i % 256 + dx, y = i / 256 + dy;
+        if (x < 0 || y < 0 || x >= 256 || y >= 256 || lit[y * 256 + x] != 1) continue;
+        lit[y * 256 + x] = 2;
+        stack.push_back(y * 256 + x);
+      }
+  }
+  INFO(reached << " of " << total << " highlight pixels in the first shape");
+  CHECK(reached >= 0.97 * total);
+  // Its height is the band's: at the head's front, its width and its teeth, 8 + 8 degrees of
+  // latitude on a radius of 0.1 at distance 0.5 seen with a focal length of 300 px: 17 px.
+  int y0 = 256, y1 = 0;
+  for (int i = 0; i < 256 * 256; ++i)
+    if (lit[i] == 2) y0 = std::min(y0, i / 256), y1 = std::max(y1, i / 256);
+  const double px = 16 * M_PI / 180 * 0.1 * 300 / 0.5;
+  CHECK(y1 - y0 > 0.5 * px);
+  CHECK(y1 - y0 < 1.5 * px);
 }
