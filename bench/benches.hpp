@@ -13,5 +13,6 @@ int run_arrangement(const std::vector<std::string>& args);
 int run_sim(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
+int run_diffuse(const std::vector<std::string>& args);
 
 }  // namespace wisp::bench

@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, Bench> benches = {
       {"solver", wisp::bench::run_solver},   {"arrangement", wisp::bench::run_arrangement},
       {"sim", wisp::bench::run_sim},         {"render", wisp::bench::run_render},
-      {"quality", wisp::bench::run_quality},
+      {"quality", wisp::bench::run_quality}, {"diffuse", wisp::bench::run_diffuse},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");

@@ -74,4 +74,35 @@ void validate(const DiffusionCurve& curve, const std::string& what) {
       throw std::invalid_argument(what + ": active interval must satisfy 0 <= t0 <= t1 <= 1");
 }
 
+void validate(const PoissonCurve& curve, const std::string& what) {
+  DiffusionCurve path;
+  path.points = curve.points;
+  path.right = curve.weights;
+  validate(path, what);
+  if (curve.weights.empty()) throw std::invalid_argument(what + ": has no weights");
+}
+
+void validate(const GradientMesh& mesh, const std::string& what) {
+  if (mesh.rows < 1 || mesh.cols < 1)
+    throw std::invalid_argument(what + ": needs at least one row and one column of tiles");
+  const size_t n = size_t(mesh.rows + 1) * size_t(mesh.cols + 1);
+  const auto count = [&](size_t got, const char* name) {
+    if (got != n)
+      throw std::invalid_argument(what + ": " + std::to_string(got) + " " + name + " for " +
+                                  std::to_string(mesh.rows) + "x" + std::to_string(mesh.cols) +
+                                  " tiles; expected " + std::to_string(n));
+  };
+  count(mesh.positions.size(), "positions");
+  count(mesh.colors.size(), "colours");
+  if (!mesh.tangents_u.empty() || !mesh.tangents_v.empty()) {
+    count(mesh.tangents_u.size(), "u tangents");
+    count(mesh.tangents_v.size(), "v tangents");
+  }
+  for (const auto* set : {&mesh.positions, &mesh.tangents_u, &mesh.tangents_v})
+    for (const Eigen::Vector2d& p : *set)
+      if (!p.allFinite()) throw std::invalid_argument(what + ": a position is not finite");
+  for (const Color& c : mesh.colors)
+    if (!c.allFinite()) throw std::invalid_argument(what + ": a colour is not finite");
+}
+
 }  // namespace wisp::diffusion

@@ -52,13 +52,42 @@ struct DiffusionCurve : BezierPath {
   // Parameter intervals [t0,t1] where the curve constrains the solve; empty means everywhere.
   // Hidden parts of wisp outlines are left out this way without cutting the curve.
   std::vector<std::pair<double, double>> active;
+  // The outline of gradient mesh `mesh_outline` of the drawing (gradient_mesh.hpp), or -1. The
+  // rasterizer makes its Dirichlet side consistent with the mesh's own colours inside.
+  int mesh_outline = -1;
 };
 
-// A whole drawing: the image size it was authored for and its curves.
+// A Poisson curve (Hou et al., "Poisson Vector Graphics", TVCG 2020, as small-usvg solves it): a
+// path that fixes no colour and cuts nothing, with RGB weights along it. As in small-usvg, the
+// weight is a source of +w on the pixels left of the curve and -w on those right of it: a dipole
+// layer, so the colour steps up by w (times the drawing's area over 1024^2, small-usvg's scale)
+// from the left side to the right side, and the rest of the drawing decides the absolute colour.
+// Weights may be negative; their stops share the path parameter t of the BezierPath.
+struct PoissonCurve : BezierPath {
+  std::vector<ColorStop> weights;
+};
+
+// A gradient mesh (Ferguson patches, as in small-usvg): a grid of rows x cols tiles over
+// (rows+1) x (cols+1) vertices, row-major (a row runs along u, rows follow each other along v).
+// Each vertex has a position and a colour; position tangents along u and v are optional (empty:
+// estimated from the neighbours, as colour tangents always are). With `normalized`, positions and
+// tangents are fractions of the drawing's size. Evaluation is in gradient_mesh.hpp.
+struct GradientMesh {
+  int rows = 0;
+  int cols = 0;
+  bool normalized = false;
+  std::vector<Eigen::Vector2d> positions;
+  std::vector<Color> colors;
+  std::vector<Eigen::Vector2d> tangents_u, tangents_v;  // both empty or both of positions' size
+};
+
+// A whole drawing: the image size it was authored for and its primitives.
 struct Drawing {
   int width = 0;
   int height = 0;
   std::vector<DiffusionCurve> curves;
+  std::vector<PoissonCurve> poisson_curves;
+  std::vector<GradientMesh> meshes;
 };
 
 // Colour of a side at parameter t (linear between stops, clamped outside). Empty stops give black.
@@ -70,5 +99,9 @@ float blur_at(const std::vector<BlurStop>& stops, double t);
 // control points, non-finite coordinates or colours, stop parameters outside [0,1] or unsorted,
 // negative blur. `what` prefixes the message (for example "drawing.xml: curve 3").
 void validate(const DiffusionCurve& curve, const std::string& what);
+// Likewise for a Poisson curve (its weights may have any sign) and a gradient mesh (at least one
+// tile, vertex counts that match, finite values, tangents both given or both absent).
+void validate(const PoissonCurve& curve, const std::string& what);
+void validate(const GradientMesh& mesh, const std::string& what);
 
 }  // namespace wisp::diffusion

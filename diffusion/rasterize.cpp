@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 #include "diffusion/bezier.hpp"
 
@@ -27,6 +28,7 @@ struct Claim {
 struct Rasterizer {
   const std::vector<DiffusionCurve>& curves;
   Problem& problem;
+  const MeshRaster* meshes;
   std::vector<Claim> claims;
   std::vector<float> wx, wy;  // gradient field of gradient curves (allocated on demand)
 
@@ -145,6 +147,34 @@ struct Rasterizer {
     }
   }
 
+  // The anchor of a mesh's own outline at a pixel of that mesh: the right-hand side gains what
+  // the anchor term makes of the mesh colour, w (c - m_p), so that the mesh colour solves it.
+  void mesh_anchor(size_t pixel, double w, const std::array<double, 4>& v) {
+    const size_t n = problem.pixel_count();
+    for (int c = 0; c < 3; ++c)
+      problem.rhs[c * n + pixel] += float(w * (v[c] - meshes->planes[c * n + pixel]));
+  }
+
+  // Every free pixel of a mesh: the mesh colour's differences over its open links within the
+  // same mesh.
+  void mesh_laplacian() {
+    const size_t n = problem.pixel_count();
+    const auto link = [&](size_t p, size_t q) {
+      if (meshes->owner[p] < 0 || meshes->owner[p] != meshes->owner[q]) return;
+      for (int c = 0; c < 3; ++c) {
+        const float d = meshes->planes[c * n + q] - meshes->planes[c * n + p];
+        if (!problem.fixed[p]) problem.rhs[c * n + p] += d;
+        if (!problem.fixed[q]) problem.rhs[c * n + q] -= d;
+      }
+    };
+    for (int y = 0; y < height(); ++y)
+      for (int x = 0; x < width(); ++x) {
+        const size_t i = problem.index(x, y);
+        if (problem.links[i] & kOpenEast) link(i, i + 1);
+        if (problem.links[i] & kOpenSouth) link(i, i + size_t(width()));
+      }
+  }
+
   void fix(size_t pixel, const Claim& c) {
     problem.fixed[pixel] = 1;
     set_value(pixel, value(c));
@@ -171,6 +201,9 @@ struct Rasterizer {
         const std::array<double, 4> v = value(claims[k]);
         weight += w;
         for (int c = 0; c < 4; ++c) sum[c] += w * v[c];
+        if (meshes && curves[claims[k].side / 2].mesh_outline >= 0 &&
+            curves[claims[k].side / 2].mesh_outline == meshes->owner[pixel])
+          mesh_anchor(pixel, w, v);
       }
       problem.anchor_weight[pixel] = float(weight);
       for (double& v : sum) v /= weight;
@@ -182,9 +215,12 @@ struct Rasterizer {
 }  // namespace
 
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
-                  const RasterizeOptions& options) {
+                  const RasterizeOptions& options, const MeshRaster* meshes) {
   Problem problem = make_open_problem(width, height, options.blur_channel ? 4 : 3);
-  Rasterizer r{curves, problem, {}, {}, {}};
+  if (meshes && (meshes->width != width || meshes->height != height))
+    throw std::invalid_argument("rasterize: the mesh coverage does not match the image size");
+  if (meshes) problem.rhs.assign(problem.pixel_count() * problem.channels, 0.0f);
+  Rasterizer r{curves, problem, meshes, {}, {}, {}};
   for (std::uint32_t k = 0; k < curves.size(); ++k) {
     const std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
     for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);
@@ -193,6 +229,7 @@ Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int heig
     r.fix_nearest();
   else
     r.anchor();
+  if (meshes) r.mesh_laplacian();
   if (!r.wx.empty() || !r.wy.empty()) {
     const size_t n = problem.pixel_count() * problem.channels;
     r.wx.resize(n, 0.0f);

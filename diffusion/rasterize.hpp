@@ -27,11 +27,17 @@
 //  - Gradient curves cut, anchor and fix nothing: each crossing adds the colour jump across the
 //    curve to the link's gradient field, and the problem's right-hand side becomes div w.
 //  - Only the curve's active parameter intervals take part.
+//  - Gradient meshes (gradient_mesh.hpp), when given: a pixel that a mesh owns and that is not
+//    fixed gets as right-hand side the mesh colour's differences over its open links to pixels
+//    of the same mesh, plus (c - m_p) / theta for each anchor on the mesh's own outline, where
+//    m_p is the mesh colour at the pixel: exactly the operator applied to the mesh colours, so a
+//    mesh alone solves to them.
 #pragma once
 
 #include <vector>
 
 #include "diffusion/diffusion_curve.hpp"
+#include "diffusion/gradient_mesh.hpp"
 #include "diffusion/problem.hpp"
 
 namespace wisp::diffusion {
@@ -49,7 +55,9 @@ struct RasterizeOptions {
 };
 
 // Curves must be valid (see validate()) and in pixel coordinates of a width x height image.
+// `meshes`, when given, is the coverage of the drawing's gradient meshes at this size; their
+// outlines must be among the curves, tagged (DiffusionCurve::mesh_outline).
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
-                  const RasterizeOptions& options = {});
+                  const RasterizeOptions& options = {}, const MeshRaster* meshes = nullptr);
 
 }  // namespace wisp::diffusion

@@ -20,6 +20,8 @@ using diffusion::Boundary;
 using diffusion::Color;
 using diffusion::ColorStop;
 using diffusion::DiffusionCurve;
+using diffusion::GradientMesh;
+using diffusion::PoissonCurve;
 using tinyxml2::XMLElement;
 
 class Reader {
@@ -62,20 +64,40 @@ class Reader {
                         ">: " + what + " (using the " + std::to_string(actual) + ")");
   }
 
-  Color color(const XMLElement* e) const {
+  // A colour, or with `weight` a Poisson weight: the same attributes, of any sign.
+  Color color(const XMLElement* e, bool weight = false) const {
     Color c;
     const bool bytes = e->Attribute("R") || e->Attribute("G") || e->Attribute("B");
     const char* names[3] = {bytes ? "R" : "r", bytes ? "G" : "g", bytes ? "B" : "b"};
     const double top = bytes ? 255.0 : 1.0;
     for (int k = 0; k < 3; ++k) {
       const double v = number(e, names[k]);
-      if (v < 0 || v > top)
+      if (!weight && (v < 0 || v > top))
         fail(e, std::string("colour '") + names[k] + "' must lie in [0," + (bytes ? "255" : "1") +
                     "], got " + e->Attribute(names[k]));
       c[k] = float(v / top);
     }
     if (dialect_ == XmlDialect::CurveSetXML) std::swap(c[0], c[2]);  // the files store BGR
     return c;
+  }
+
+  // The control points of a cubic Bezier path under `e`, checked against nb_control_points.
+  std::vector<Eigen::Vector2d> path(const XMLElement* e, const std::string& what) const {
+    std::vector<Eigen::Vector2d> points;
+    const XMLElement* set = e->FirstChildElement("control_points_set");
+    if (!set) fail(e, "missing <control_points_set>");
+    for (const XMLElement* p = set->FirstChildElement("control_point"); p;
+         p = p->NextSiblingElement("control_point")) {
+      const double x = number(p, "x"), y = number(p, "y");
+      points.emplace_back(dialect_ == XmlDialect::CurveSetXML ? Eigen::Vector2d(y, x)
+                                                              : Eigen::Vector2d(x, y));
+    }
+    check_count(e, "nb_control_points", points.size(), true);
+    const size_t n = points.size();
+    if (n < 4 || (n - 1) % 3 != 0)
+      fail(e, what + " has " + std::to_string(n) +
+                  " control points; a cubic Bezier path needs 3k+1 (4, 7, 10, ...)");
+    return points;
   }
 
   // The children named `child` of element `set` (which may be null) with their globalID
@@ -113,19 +135,7 @@ class Reader {
 
   DiffusionCurve curve(const XMLElement* e, int index) const {
     DiffusionCurve c;
-    const XMLElement* points = e->FirstChildElement("control_points_set");
-    if (!points) fail(e, "missing <control_points_set>");
-    for (const XMLElement* p = points->FirstChildElement("control_point"); p;
-         p = p->NextSiblingElement("control_point")) {
-      const double x = number(p, "x"), y = number(p, "y");
-      c.points.emplace_back(dialect_ == XmlDialect::CurveSetXML ? Eigen::Vector2d(y, x)
-                                                                : Eigen::Vector2d(x, y));
-    }
-    check_count(e, "nb_control_points", c.points.size(), true);
-    const size_t n = c.points.size();
-    if (n < 4 || (n - 1) % 3 != 0)
-      fail(e, "curve " + std::to_string(index) + " has " + std::to_string(n) +
-                  " control points; a cubic Bezier path needs 3k+1 (4, 7, 10, ...)");
+    c.points = path(e, "curve " + std::to_string(index));
 
     const XMLElement* left = e->FirstChildElement("left_colors_set");
     const XMLElement* right = e->FirstChildElement("right_colors_set");
@@ -157,6 +167,73 @@ class Reader {
     return c;
   }
 
+  PoissonCurve poisson_curve(const XMLElement* e, int index) const {
+    const std::string what = "Poisson curve " + std::to_string(index);
+    PoissonCurve c;
+    c.points = path(e, what);
+    const XMLElement* weights = e->FirstChildElement("weights_set");
+    if (!weights) fail(e, "missing <weights_set>");
+    c.weights = stops<ColorStop>(weights, "weight", [&](const XMLElement* w) {
+      return ColorStop{0, color(w, true)};
+    });
+    check_count(e, "nb_weights", c.weights.size(), false);
+    if (c.weights.empty()) fail(weights, what + " has no <weight>");
+    diffusion::validate(c, name_ + ":" + std::to_string(e->GetLineNum()) + ": " + what);
+    return c;
+  }
+
+  // The children `child` of `e`'s element `set`, as points (x, y).
+  std::vector<Eigen::Vector2d> points(const XMLElement* set, const char* child) const {
+    std::vector<Eigen::Vector2d> out;
+    for (const XMLElement* p = set->FirstChildElement(child); p; p = p->NextSiblingElement(child))
+      out.emplace_back(number(p, "x"), number(p, "y"));
+    return out;
+  }
+
+  GradientMesh mesh(const XMLElement* e, int index) const {
+    const std::string what = "gradient mesh " + std::to_string(index);
+    GradientMesh m;
+    m.rows = count(e, "nb_rows");
+    m.cols = count(e, "nb_cols");
+    if (m.rows < 1 || m.cols < 1) fail(e, what + " needs nb_rows and nb_cols of at least 1");
+    if (const char* n = e->Attribute("normalized")) {
+      const std::string v = n;
+      if (v == "1" || v == "true")
+        m.normalized = true;
+      else if (v != "0" && v != "false")
+        fail(e, "normalized must be 0, 1, true or false, got \"" + v + "\"");
+    }
+    const size_t vertices = size_t(m.rows + 1) * size_t(m.cols + 1);
+    const auto expect = [&](const XMLElement* at, size_t got, const char* what_set) {
+      if (got != vertices)
+        fail(at, what + ": " + std::to_string(got) + " " + what_set + " for " +
+                     std::to_string(m.rows) + "x" + std::to_string(m.cols) + " tiles; expected " +
+                     std::to_string(vertices));
+    };
+    const XMLElement* positions = e->FirstChildElement("position_set");
+    if (!positions) fail(e, "missing <position_set>");
+    m.positions = points(positions, "position");
+    check_count(e, "nb_positions", m.positions.size(), true);
+    expect(positions, m.positions.size(), "positions");
+    const XMLElement* colors = e->FirstChildElement("color_set");
+    if (!colors) fail(e, "missing <color_set>");
+    for (const XMLElement* c = colors->FirstChildElement("color"); c;
+         c = c->NextSiblingElement("color"))
+      m.colors.push_back(color(c));
+    check_count(e, "nb_colors", m.colors.size(), true);
+    expect(colors, m.colors.size(), "colours");
+    // small-usvg reads <pos_tangent_set> only (one published mesh spells it pos_tangents_set,
+    // and is drawn with estimated tangents): so do we.
+    if (const XMLElement* t = e->FirstChildElement("pos_tangent_set")) {
+      m.tangents_u = points(t, "positionU");
+      m.tangents_v = points(t, "positionV");
+      expect(t, m.tangents_u.size(), "<positionU>");
+      expect(t, m.tangents_v.size(), "<positionV>");
+    }
+    diffusion::validate(m, name_ + ":" + std::to_string(e->GetLineNum()) + ": " + what);
+    return m;
+  }
+
   DrawingFile read(const tinyxml2::XMLDocument& doc) {
     DrawingFile out;
     out.dialect = dialect_;
@@ -180,21 +257,23 @@ class Reader {
         out.drawing.curves.push_back(curve(c, ++index));
       check_count(set, "nb_curves", out.drawing.curves.size(), true);
     }
-    out.warnings = warnings_;
     if (dialect_ == XmlDialect::SceneXML) {
-      const auto skipped = [&](const char* set_name, const char* child, const char* what) {
-        const XMLElement* s = root->FirstChildElement(set_name);
-        int n = 0;
-        for (const XMLElement* e = s ? s->FirstChildElement(child) : nullptr; e;
-             e = e->NextSiblingElement(child))
-          ++n;
-        if (n > 0)
-          out.warnings.push_back(name_ + ": skipped " + std::to_string(n) + " " + what +
-                                 " (not supported by wisp)");
-      };
-      skipped("poisson_curve_set", "poisson_curve", "Poisson curve(s)");
-      skipped("mesh_set", "mesh", "gradient mesh(es)");
+      if (const XMLElement* pset = root->FirstChildElement("poisson_curve_set")) {
+        int index = 0;
+        for (const XMLElement* c = pset->FirstChildElement("poisson_curve"); c;
+             c = c->NextSiblingElement("poisson_curve"))
+          out.drawing.poisson_curves.push_back(poisson_curve(c, ++index));
+        check_count(pset, "nb_curves", out.drawing.poisson_curves.size(), true);
+      }
+      if (const XMLElement* mset = root->FirstChildElement("mesh_set")) {
+        int index = 0;
+        for (const XMLElement* m = mset->FirstChildElement("mesh"); m;
+             m = m->NextSiblingElement("mesh"))
+          out.drawing.meshes.push_back(mesh(m, ++index));
+        check_count(mset, "nb_meshes", out.drawing.meshes.size(), true);
+      }
     }
+    out.warnings = warnings_;
     return out;
   }
 
@@ -252,6 +331,9 @@ DrawingFile read_drawing_xml(const std::filesystem::path& path) {
 
 std::string format_drawing_xml(const diffusion::Drawing& d, XmlDialect dialect) {
   const bool orzan = dialect == XmlDialect::CurveSetXML;
+  if (orzan && (!d.poisson_curves.empty() || !d.meshes.empty()))
+    throw std::invalid_argument(
+        "CurveSetXML cannot hold Poisson curves or gradient meshes; write SceneXML");
   std::ostringstream o;
   const std::string size = "image_width=\"" + std::to_string(d.width) + "\" image_height=\"" +
                            std::to_string(d.height) + "\"";
@@ -301,7 +383,51 @@ std::string format_drawing_xml(const diffusion::Drawing& d, XmlDialect dialect) 
         << "\"/>\n";
     o << "   </blur_points_set>\n  </curve>\n";
   }
-  o << (orzan ? "</curve_set>\n" : " </curve_set>\n</scene>\n");
+  if (orzan) {
+    o << "</curve_set>\n";
+    return o.str();
+  }
+  o << " </curve_set>\n";
+  const auto point = [&](const char* tag, const Eigen::Vector2d& p) {
+    o << "    <" << tag << " x=\"" << fmt("%.17g", p.x()) << "\" y=\"" << fmt("%.17g", p.y())
+      << "\"/>\n";
+  };
+  if (!d.poisson_curves.empty()) {
+    o << " <poisson_curve_set nb_curves=\"" << d.poisson_curves.size() << "\">\n";
+    for (const PoissonCurve& c : d.poisson_curves) {
+      o << "  <poisson_curve nb_control_points=\"" << c.points.size() << "\" nb_weights=\""
+        << c.weights.size() << "\">\n   <control_points_set>\n";
+      for (const Eigen::Vector2d& p : c.points) point("control_point", p);
+      o << "   </control_points_set>\n   <weights_set>\n";
+      for (const ColorStop& s : c.weights)
+        o << "    <weight " << colour(s.color) << " globalID=\"" << id(s.t) << "\"/>\n";
+      o << "   </weights_set>\n  </poisson_curve>\n";
+    }
+    o << " </poisson_curve_set>\n";
+  }
+  if (!d.meshes.empty()) {
+    o << " <mesh_set nb_meshes=\"" << d.meshes.size() << "\">\n";
+    for (const GradientMesh& m : d.meshes) {
+      o << "  <mesh nb_rows=\"" << m.rows << "\" nb_cols=\"" << m.cols << "\" nb_positions=\""
+        << m.positions.size() << "\" nb_colors=\"" << m.colors.size() << "\" normalized=\""
+        << (m.normalized ? 1 : 0) << "\">\n   <position_set>\n";
+      for (const Eigen::Vector2d& p : m.positions) point("position", p);
+      o << "   </position_set>\n   <color_set>\n";
+      for (const Color& c : m.colors) o << "    <color " << colour(c) << "/>\n";
+      o << "   </color_set>\n";
+      if (!m.tangents_u.empty()) {
+        o << "   <pos_tangent_set>\n";
+        for (size_t k = 0; k < m.tangents_u.size(); ++k) {
+          point("positionU", m.tangents_u[k]);
+          point("positionV", m.tangents_v[k]);
+        }
+        o << "   </pos_tangent_set>\n";
+      }
+      o << "  </mesh>\n";
+    }
+    o << " </mesh_set>\n";
+  }
+  o << "</scene>\n";
   return o.str();
 }
 

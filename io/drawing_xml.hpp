@@ -9,8 +9,11 @@
 //    `R G B` in 0..255 or `r g b` in [0,1].
 //
 // `globalID` is a position along the curve; each set is divided by its own largest globalID when
-// that exceeds 1 (the convention of every reader). Poisson curves and gradient meshes are not
-// rendered: they are skipped with one warning each.
+// that exceeds 1 (the convention of every reader). SceneXML also holds small-usvg's Poisson curves
+// (`<poisson_curve_set>`: control points and RGB weights of any sign, with globalIDs) and gradient
+// meshes (`<mesh_set>`: nb_rows x nb_cols tiles, positions, colours, optional
+// `<pos_tangent_set>` of positionU/positionV, and the `normalized` flag), read and written as
+// given; CurveSetXML cannot hold them.
 //
 // Errors are std::invalid_argument with "FILE:LINE: <element>: what is wrong".
 #pragma once
@@ -28,7 +31,7 @@ enum class XmlDialect { SceneXML, CurveSetXML };
 struct DrawingFile {
   diffusion::Drawing drawing;
   XmlDialect dialect = XmlDialect::SceneXML;
-  std::vector<std::string> warnings;  // one per kind of skipped element
+  std::vector<std::string> warnings;  // stale counts (see check_count in the reader)
 };
 
 constexpr int kMaxImageSide = 16384;

@@ -5,8 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "diffusion/multigrid.hpp"
-#include "diffusion/rasterize.hpp"
+#include "diffusion/render.hpp"
 #include "io/drawing_xml.hpp"
 #include "run_command.hpp"
 
@@ -32,6 +31,7 @@ TEST_CASE("wisp diffuse renders every external drawing, unblurred ones exactly a
     const auto r =
         run_command(kWisp + " diffuse " + xml + " -o " + png + " --size 256x256 --stats " + stats);
     REQUIRE(r.exit_code == 0);
+    CHECK(r.output.find("skipped") == std::string::npos);  // every primitive is drawn
     const cv::Mat img = cv::imread(png, cv::IMREAD_COLOR);
     REQUIRE(img.rows == 256);
     REQUIRE(img.cols == 256);
@@ -44,23 +44,21 @@ TEST_CASE("wisp diffuse renders every external drawing, unblurred ones exactly a
     CHECK(j["solver"]["converged"] == true);
     CHECK(j["times_ms"]["total"].get<double>() > 0);
 
-    // Where nothing is blurred, the PNG without anti-aliasing is the solve of the rasterized
-    // curves, rounded.
-    auto file = wisp::io::read_drawing_xml(xml);
+    // Where nothing is blurred, the PNG without anti-aliasing is the library's solve of the
+    // drawing (curves, Poisson curves and meshes), rounded.
+    const auto file = wisp::io::read_drawing_xml(xml);
     bool blurred = false;
-    for (auto& c : file.drawing.curves) {
-      for (auto& q : c.points) q *= 256.0 / file.drawing.width;
-      for (auto& b : c.blur) blurred = blurred || b.sigma > 0;
-    }
+    for (const auto& c : file.drawing.curves)
+      for (const auto& b : c.blur) blurred = blurred || b.sigma > 0;
     if (blurred) continue;
     const std::string sharp_png = out + "/" + name + "_sharp.png";
     REQUIRE(run_command(kWisp + " diffuse " + xml + " -o " + sharp_png +
                         " --size 256x256 --no-antialias")
                 .exit_code == 0);
     const cv::Mat sharp = cv::imread(sharp_png, cv::IMREAD_COLOR);
-    const auto p = wisp::diffusion::rasterize(file.drawing.curves, 256, 256);
-    const auto u = wisp::diffusion::solve_multigrid(p).planes;
-    const size_t n = p.pixel_count();
+    const auto u =
+        wisp::diffusion::render_drawing(file.drawing, 256, 256, {}, nullptr, false).planes;
+    const size_t n = 256 * 256;
     int differ = 0;
     for (size_t i = 0; i < n; ++i) {
       const cv::Vec3b px = sharp.at<cv::Vec3b>(int(i / 256), int(i % 256));
