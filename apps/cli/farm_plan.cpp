@@ -9,17 +9,18 @@
 namespace wisp::cli::farm {
 namespace {
 
-// One thread rendering frames 40-47 of the default scene (data/scenes/default.json) on the
-// development machine, `wisp render --threads 1`: median seconds per frame and the process's peak
-// resident memory (/usr/bin/time %M). docs/farm.md has the table and how to measure again.
+// One thread rendering the whole default scene (data/scenes/default.json, 97 frames) on the
+// development machine, `wisp render --threads 1 --size WxH`: mean seconds per frame (stats.json)
+// and the process's peak resident memory (/usr/bin/time %M), on a machine shared with other work
+// (a loaded figure errs on the safe side). docs/farm.md has the table and how to measure again.
 struct Measured {
   double pixels, seconds, peak_mb;
 };
 constexpr Measured kMeasured[] = {
-    {128.0 * 128, 0.48, 195},
-    {512.0 * 512, 0.67, 214},
-    {1024.0 * 1024, 1.10, 298},
-    {2048.0 * 2048, 2.72, 715},
+    {128.0 * 128, 0.49, 209},
+    {512.0 * 512, 1.41, 231},
+    {1024.0 * 1024, 2.68, 420},
+    {2048.0 * 2048, 5.60, 1064},
 };
 constexpr int kMeasuredCount = int(sizeof kMeasured / sizeof kMeasured[0]);
 
