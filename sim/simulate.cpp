@@ -131,7 +131,7 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
       : sp.model == SimModel::Rope       ? make_rope_solver(env, setup.rest)
                                          : make_dftl_solver(env, setup.rest);
   const double dt = 1.0 / sp.step_rate;
-  const int frames = static_cast<int>(std::floor(setup.duration * sp.fps + 1e-9)) + 1;
+  const int frames = animation_frame_count(setup);
   Animation anim;
   anim.fps = sp.fps;
   anim.head = setup.head;
@@ -164,6 +164,10 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
     if (progress) progress(f + 1, frames);
   }
   return anim;
+}
+
+int animation_frame_count(const SimSetup& setup) {
+  return static_cast<int>(std::floor(setup.duration * setup.sim.fps + 1e-9)) + 1;
 }
 
 }  // namespace wisp::sim

@@ -43,6 +43,9 @@ using SimProgress = std::function<void(int done, int total)>;
 // and std::runtime_error when the integrator blows up ("simulation blew up at frame F ...").
 Animation simulate(const SimSetup& setup, const SimProgress& progress = {});
 
+// The number of frames simulate() writes: frame 0 at time 0, then one per 1/fps up to duration.
+int animation_frame_count(const SimSetup& setup);
+
 // Largest |segment length / rest length - 1| of any strand in `frame`, against `rest`.
 double max_stretch(const StrandFrame& frame, const std::vector<Polyline>& rest);
 

@@ -32,10 +32,10 @@ using diffusion::Clock;
 using diffusion::ms_since;
 
 struct RenderArgs {
-  std::string scene, outdir, frames, size, anim;
+  std::string scene, outdir, frames, size, anim, stats;
   std::string svg_style = sim::choice_name(render::SvgStyle::Embedded);
   int threads = 0;
-  bool force = false, quiet = false, masks = false;
+  bool force = false, quiet = false, masks = false, no_previews = false;
 };
 
 // --frames A:B as (A, B); (0, -1) when not given: to the end.
@@ -128,11 +128,15 @@ void run_render(const RenderArgs& a) {
   ms.frames = ms_since(t0);
 
   t0 = Clock::now();
-  render::write_previews(frames, range, out);
+  if (!a.no_previews) render::write_previews(frames.scene, frames.anim.fps, range, out);
   ms.video_and_contact_sheet = ms_since(t0);
   ms.total = ms_since(t_start);
-  io::write_text_atomically(out / "stats.json",
-                            render::run_stats(a.scene, frames, range, written, ms).dump(2) + "\n");
+  const fs::path stats = a.stats.empty() ? out / "stats.json" : fs::path(a.stats);
+  if (stats.has_parent_path()) fs::create_directories(stats.parent_path());
+  io::write_text_atomically(
+      stats,
+      render::run_stats(a.scene, frames.scene, frames.frame_count(), range, written, ms).dump(2) +
+          "\n");
   if (!a.quiet)
     std::fprintf(stderr, "render: %d frames written, %d already there; output in %s\n",
                  int(written.size()), range.size() - int(written.size()),
@@ -157,6 +161,12 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::IsMember(sim::choice_names<render::SvgStyle>()));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 256));
+  cmd->add_option("--stats", args->stats,
+                  "Write the run's stats here (default: OUTDIR/stats.json); `wisp assemble` "
+                  "merges OUTDIR/stats/*.json");
+  cmd->add_flag("--no-previews", args->no_previews,
+                "No preview video or contact sheet (several renders share the folder: `wisp "
+                "assemble` writes them)");
   cmd->add_flag("--force", args->force, "Render frames that already exist again");
   cmd->add_flag("--masks", args->masks, "Also write each frame's hair mask (mask_NNNN.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress output");

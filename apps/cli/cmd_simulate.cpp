@@ -33,8 +33,7 @@ void add_simulate_command(CLI::App& app) {
     const auto start = diffusion::Clock::now();
     std::unique_ptr<render::ProgressBar> bar;
     if (!opt->quiet)
-      bar = std::make_unique<render::ProgressBar>(
-          "simulate", static_cast<int>(setup.duration * setup.sim.fps) + 1);
+      bar = std::make_unique<render::ProgressBar>("simulate", sim::animation_frame_count(setup));
     const sim::Animation anim = sim::simulate(setup, [&](int done, int) {
       if (bar) bar->update(done);
     });

@@ -5,11 +5,16 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
 
 namespace wisp::cli {
 
 void add_diffuse_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_assemble_command(CLI::App& app);
+// `command`: the whole command line, recorded in OUTDIR/farm.json.
+void add_farm_command(CLI::App& app, const std::vector<std::string>& command);
 
 }  // namespace wisp::cli

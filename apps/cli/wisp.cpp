@@ -1,6 +1,8 @@
 // Entry point of the `wisp` command line: one subcommand per main job (see apps/commands.hpp).
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "apps/cli/cli_error.hpp"
 #include "apps/cli/commands.hpp"
@@ -12,6 +14,8 @@ int main(int argc, char** argv) {
   wisp::cli::add_diffuse_command(app);
   wisp::cli::add_simulate_command(app);
   wisp::cli::add_render_command(app);
+  wisp::cli::add_assemble_command(app);
+  wisp::cli::add_farm_command(app, std::vector<std::string>(argv, argv + argc));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -29,7 +29,30 @@ int block_end(const RangePlan& plan, int b) {
   return end;
 }
 
+bool frame_done(const fs::path& folder, int k) {
+  return fs::exists(folder / frame_file_name(k, "png")) &&
+         fs::exists(folder / frame_file_name(k, "svg"));
+}
+
 }  // namespace
+
+FrameRange block_frames(int b, int block, int frame_count) {
+  return {std::min(b * block, frame_count), std::min((b + 1) * block, frame_count)};
+}
+
+std::vector<FrameRange> block_aligned_ranges(int frame_count, int block, int parts) {
+  block = std::max(1, block);
+  const int blocks = (frame_count + block - 1) / block;
+  parts = std::max(1, std::min(parts, blocks));
+  std::vector<FrameRange> ranges;
+  for (int i = 0, b = 0; i < parts; ++i) {
+    const int count = blocks / parts + (i < blocks % parts ? 1 : 0);
+    ranges.push_back({block_frames(b, block, frame_count).first,
+                      block_frames(b + count - 1, block, frame_count).last});
+    b += count;
+  }
+  return ranges;
+}
 
 std::string frame_file_name(int k, const char* ext) {
   char buf[32];
@@ -62,15 +85,12 @@ RangePlan plan_range(const fs::path& folder, FrameRange range, int frame_count, 
   RangePlan plan;
   plan.block = std::max(1, block);
   plan.write.assign(frame_count, 0);
-  const auto done = [&](int k) {
-    return fs::exists(folder / frame_file_name(k, "png")) &&
-           fs::exists(folder / frame_file_name(k, "svg"));
-  };
-  for (int k = range.first; k < range.last; ++k) plan.write[k] = force || !done(k);
+  for (int k = range.first; k < range.last; ++k) plan.write[k] = force || !frame_done(folder, k);
   for (int b = range.first / plan.block; b * plan.block < range.last; ++b) {
     bool any = false;
-    for (int k = std::max(range.first, b * plan.block);
-         k < std::min(range.last, (b + 1) * plan.block); ++k)
+    const FrameRange in_block = block_frames(b, plan.block, frame_count);
+    for (int k = std::max(range.first, in_block.first); k < std::min(range.last, in_block.last);
+         ++k)
       any |= plan.write[k];
     if (any) plan.blocks.push_back(b);
   }
@@ -112,16 +132,23 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
   return out;
 }
 
-void write_previews(const SceneFrames& frames, FrameRange range, const fs::path& folder) {
+std::vector<int> missing_frames(const fs::path& folder, FrameRange range) {
+  std::vector<int> missing;
+  for (int k = range.first; k < range.last; ++k)
+    if (!frame_done(folder, k)) missing.push_back(k);
+  return missing;
+}
+
+void write_previews(const io::Scene& scene, double fps, FrameRange range, const fs::path& folder) {
   std::vector<fs::path> pngs;
   std::vector<int> numbers;
   for (int k = range.first; k < range.last; ++k) {
     pngs.push_back(folder / frame_file_name(k, "png"));
     numbers.push_back(k);
   }
-  if (frames.scene.render.video) io::write_video(folder / "preview.mp4", pngs, frames.anim.fps);
+  if (scene.render.video) io::write_video(folder / "preview.mp4", pngs, fps);
   io::ContactSheetOptions sheet;
-  sheet.columns = frames.scene.render.contact_sheet_columns;
+  sheet.columns = scene.render.contact_sheet_columns;
   io::write_contact_sheet(folder / "contact.png", pngs, numbers, sheet);
 }
 

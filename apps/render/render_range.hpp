@@ -29,6 +29,16 @@ struct FrameRange {
   int size() const { return last - first; }
 };
 
+// The frames of warm-start block b (blocks of `block` frames counted from frame 0), the last
+// block cut at frame_count.
+FrameRange block_frames(int b, int block, int frame_count);
+
+// An animation's frames cut into `parts` consecutive ranges of whole warm-start blocks, as even as
+// whole blocks allow (the first ranges take one block more); fewer ranges when there are fewer
+// blocks. Ranges that split at block boundaries solve no frame twice, and render the same pixels
+// as one run over the whole animation (see the top of this file). `block` < 1 counts as 1.
+std::vector<FrameRange> block_aligned_ranges(int frame_count, int block, int parts);
+
 // The file of frame k: "frame_0007.png" for k = 7 and ext "png".
 std::string frame_file_name(int k, const char* ext);
 
@@ -64,9 +74,12 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                                          const RangePlan& plan, const FrameFiles& files,
                                          const std::function<void(int count)>& written);
 
-// The preview video (when the scene asks for one) and the contact sheet of every frame of
-// `range` in `folder`, those rendered by earlier runs included.
-void write_previews(const SceneFrames& frames, FrameRange range,
+// The preview video (when the scene asks for one, at `fps`) and the contact sheet of every frame
+// of `range` in `folder`, those rendered by earlier runs (or other machines) included.
+void write_previews(const io::Scene& scene, double fps, FrameRange range,
                     const std::filesystem::path& folder);
+
+// The frames of `range` whose PNG or SVG is missing from `folder`, in order.
+std::vector<int> missing_frames(const std::filesystem::path& folder, FrameRange range);
 
 }  // namespace wisp::render

@@ -50,7 +50,8 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
             {"frame", frame_ms}}}};
 }
 
-nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
+nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
+                         int frames_in_animation, FrameRange range,
                          const std::vector<nlohmann::json>& written, const RunTimes& ms) {
   std::map<std::string, std::vector<double>> stage;
   for (const nlohmann::json& f : written)
@@ -64,12 +65,12 @@ nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frame
   }
   const int count = int(written.size());
   return {{"scene", scene_file},
-          {"frames_in_animation", frames.frame_count()},
+          {"frames_in_animation", frames_in_animation},
           {"range", {range.first, range.last}},
           {"rendered", written.size()},
           {"skipped", range.size() - count},
-          {"width", frames.scene.camera.width},
-          {"height", frames.scene.camera.height},
+          {"width", scene.camera.width},
+          {"height", scene.camera.height},
           {"ms",
            {{"simulate_and_project", ms.simulate_and_project},
             {"frames", ms.frames},
@@ -79,6 +80,38 @@ nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frame
           {"stage_ms_median", medians},
           {"stage_ms_total", totals},
           {"frames", written}};
+}
+
+nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::string& scene_file,
+                            io::Scene scene, int frames_in_animation, FrameRange range,
+                            double previews_ms) {
+  std::map<int, nlohmann::json> by_frame;
+  RunTimes ms;
+  nlohmann::json listed = nlohmann::json::array();
+  for (const RunStatsFile& run : runs) {
+    const nlohmann::json& s = run.stats;
+    for (const nlohmann::json& f : s.value("frames", nlohmann::json::array())) {
+      const int k = f.value("frame", -1);
+      if (k >= range.first && k < range.last) by_frame[k] = f;
+    }
+    const nlohmann::json times = s.value("ms", nlohmann::json::object());
+    ms.simulate_and_project += times.value("simulate_and_project", 0.0);
+    ms.frames += times.value("frames", 0.0);
+    ms.total += times.value("total", 0.0);
+    scene.camera.width = s.value("width", scene.camera.width);
+    scene.camera.height = s.value("height", scene.camera.height);
+    listed.push_back({{"file", run.file},
+                      {"range", s.value("range", nlohmann::json::array())},
+                      {"rendered", s.value("rendered", 0)},
+                      {"ms_total", times.value("total", 0.0)}});
+  }
+  std::vector<nlohmann::json> written;
+  for (auto& [k, f] : by_frame) written.push_back(std::move(f));
+  ms.video_and_contact_sheet = previews_ms;
+  ms.total += previews_ms;
+  nlohmann::json merged = run_stats(scene_file, scene, frames_in_animation, range, written, ms);
+  merged["runs"] = listed;
+  return merged;
 }
 
 }  // namespace wisp::render

@@ -27,8 +27,26 @@ struct RunTimes {
   double total = 0;
 };
 
-// The whole of stats.json. `written`: the frame records (frame_stats) in frame order.
-nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
+// The whole of stats.json. `scene`: as rendered (camera size overridden); `written`: the frame
+// records (frame_stats) in frame order.
+nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
+                         int frames_in_animation, FrameRange range,
                          const std::vector<nlohmann::json>& written, const RunTimes& ms);
+
+// One run's stats.json, read back for merging, and the file it came from.
+struct RunStatsFile {
+  std::string file;
+  nlohmann::json stats;
+};
+
+// The stats.json of several runs that rendered parts of one animation into one folder (a farm's
+// tasks, or machines rendering ranges by hand), for `wisp assemble`: one run over `range` whose
+// frame records are the runs' merged by frame number, a later run's record replacing an earlier
+// one's (a resumed task's); the image size is the runs'; "ms.frames" and the stage totals add up
+// the runs' (machine time, not wall time), "ms.video_and_contact_sheet" is `previews_ms`, and
+// "runs" lists each run's file, range, frames rendered and total milliseconds, in the order given.
+nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::string& scene_file,
+                            io::Scene scene, int frames_in_animation, FrameRange range,
+                            double previews_ms);
 
 }  // namespace wisp::render
