@@ -89,7 +89,10 @@ struct InkStyle {
   double tip_fade = 0.15;
   double tip_width = 0.35;
   double end_taper = 6;         // px (reference): occlusion strokes taper to 0 at their open ends
-  double fit_tolerance = 0.15;  // px (final image): Bezier fit of the polylines
+  // px (final image): Bezier fit of the polylines. At 0.15 px the 1:1 error of the toon and anime
+  // presets at 512^2 was 2-3/255 higher at the 99th percentile (an ink edge off by a tenth of a
+  // pixel against skin is 20/255); the strokes cost a few milliseconds either way.
+  double fit_tolerance = 0.05;
 
   bool enabled() const { return silhouette_width > 0 || occlusion_width > 0; }
 };
