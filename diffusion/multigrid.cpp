@@ -450,19 +450,40 @@ struct RowCouplings {
 };
 
 // Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
-// equation asks given its neighbours. The whole row is computed into `buf` (contiguous, so it
-// vectorises) and the points of that parity are kept.
+// equation asks given its neighbours. Only the points of that parity are computed, every channel
+// with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
 template <int NC>
-void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict buf) {
+void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict) {
   const size_t n = L.padded(), row = L.at(0, y);
   const RowCouplings a(L, row);
+  const int s = a.stride;
   const float* __restrict id = &L.inv_diag[row];
+  float* __restrict e[NC];
+  const float* __restrict b[NC];
   for (int c = 0; c < NC; ++c) {
-    float* __restrict e = &L.e[c * n + row];
-    const float* __restrict b = &L.rhs[c * n + row];
-    a.neighbour_sum(e, buf, L.w);
-    for (int x = 0; x < L.w; ++x) buf[x] = (b[x] + buf[x]) * id[x];
-    for (int x = x_parity; x < L.w; x += 2) e[x] = buf[x];
+    e[c] = &L.e[c * n + row];
+    b[c] = &L.rhs[c * n + row];
+  }
+  if (!a.nine_point) {
+    for (int x = x_parity; x < L.w; x += 2) {
+      const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        const float t = pe * ec[x + 1] + pw * ec[x - 1] + ps * ec[x + s] + pn * ec[x - s];
+        e[c][x] = (b[c][x] + t) * d;
+      }
+    }
+    return;
+  }
+  for (int x = x_parity; x < L.w; x += 2) {
+    const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
+    const float pse = a.ase[x], pnw = a.anw[x], psw = a.asw[x], pne = a.ane[x];
+    for (int c = 0; c < NC; ++c) {
+      const float* ec = e[c];
+      float t = pe * ec[x + 1] + pw * ec[x - 1] + ps * ec[x + s] + pn * ec[x - s];
+      t += pse * ec[x + s + 1] + pnw * ec[x - s - 1] + psw * ec[x + s - 1] + pne * ec[x - s + 1];
+      e[c][x] = (b[c][x] + t) * d;
+    }
   }
 }
 
