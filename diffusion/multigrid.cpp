@@ -284,6 +284,32 @@ void Multigrid<NC>::build_prolongation(int l) {
     }
 }
 
+// Coarse points of the finest level whose Galerkin stencil is the plain one: every fine point
+// within 3 of their own (all that P^T A P reads there) is free, unanchored and linked to four free
+// neighbours. Their stencils are equal to the last bit, so one of them is computed and copied to
+// the others: most of an image is away from curves. Returns a flag per padded coarse point.
+std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
+  const int fs = F.stride;
+  // Integral image of the fine points that are not plain.
+  std::vector<int> sum(size_t(F.w + 1) * (F.h + 1), 0);
+  const auto S = [&](int x, int y) -> int& { return sum[size_t(y) * (F.w + 1) + x]; };
+  for (int y = 0; y < F.h; ++y)
+    for (int x = 0; x < F.w; ++x) {
+      const size_t k = F.at(x, y);
+      const bool plain = F.alive[k] && F.diag[k] == 4.0f && F.ae[k] == 1.0f && F.as[k] == 1.0f &&
+                         F.ae[k - 1] == 1.0f && F.as[k - fs] == 1.0f;
+      S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
+    }
+  std::vector<std::uint8_t> out(C.padded(), 0);
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      const int x0 = 2 * I - 3, y0 = 2 * J - 3, x1 = 2 * I + 4, y1 = 2 * J + 4;
+      if (x0 < 0 || y0 < 0 || x1 > F.w || y1 > F.h) continue;
+      out[C.at(I, J)] = S(x1, y1) - S(x0, y1) - S(x1, y0) + S(x0, y0) == 0;
+    }
+  return out;
+}
+
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
@@ -317,6 +343,31 @@ void Multigrid<NC>::galerkin_product(int l) {
       w[3] = P.c11[kc];
     }
   };
+  // On the finest level, plain coarse points (plain_points) are computed once, at `model`.
+  std::vector<std::uint8_t> plain;
+  size_t model = 0;
+  if (!F.nine_point) {
+    plain = plain_points(F, C);
+    const auto it = std::find(plain.begin(), plain.end(), 1);
+    if (it == plain.end())
+      plain.clear();
+    else
+      model = size_t(it - plain.begin());
+  }
+  const auto computed = [&](int I, int J) {
+    const size_t kc = C.at(I, J);
+    return plain.empty() || !plain[kc] || kc == model;
+  };
+  // Whether a computed coarse point reads the A P row of fine point (x, y): those within 1.
+  const auto needed = [&](int x, int y) {
+    if (plain.empty()) return true;
+    for (int J = (y - 1 + 1) >> 1; J <= (y + 1) >> 1; ++J)
+      for (int I = (x - 1 + 1) >> 1; I <= (x + 1) >> 1; ++I)
+        if (I < C.w && J < C.h && std::abs(2 * I - x) <= 1 && std::abs(2 * J - y) <= 1 &&
+            computed(I, J))
+          return true;
+    return false;
+  };
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
     // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
@@ -333,7 +384,7 @@ void Multigrid<NC>::galerkin_product(int l) {
       if (y < 0 || y >= F.h) continue;
       for (int x = 0; x < F.w; ++x) {
         const size_t k = F.at(x, y);
-        if (!F.alive[k]) continue;
+        if (!F.alive[k] || !needed(x, y)) continue;
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
         const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
         const Stencil st = stencil_at(F, k);
@@ -356,7 +407,7 @@ void Multigrid<NC>::galerkin_product(int l) {
     for (int J = J0; J < J1; ++J)
       for (int I = 0; I < C.w; ++I) {
         const size_t kc = C.at(I, J);
-        if (!C.alive[kc]) continue;
+        if (!C.alive[kc] || !computed(I, J)) continue;
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
         const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
                                     {P.x1[kc - 1], 1.0f, P.x0[kc]},
@@ -384,6 +435,18 @@ void Multigrid<NC>::galerkin_product(int l) {
         C.asw[kc] = float(-acc[4]);
       }
   });
+  if (plain.empty()) return;
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      const size_t kc = C.at(I, J);
+      if (!plain[kc] || kc == model) continue;
+      C.diag[kc] = C.diag[model];
+      C.inv_diag[kc] = C.inv_diag[model];
+      C.ae[kc] = C.ae[model];
+      C.as[kc] = C.as[model];
+      C.ase[kc] = C.ase[model];
+      C.asw[kc] = C.asw[model];
+    }
 }
 
 // Dense LDLT of the coarsest level's free points.
