@@ -57,11 +57,27 @@ struct Prolongation {
   std::vector<float> x0, x1, y0, y1, c00, c10, c01, c11;
 };
 
+// The arrays of a solve that outlive it: levels, prolongations, the fixed mask and the residual.
+// Each thread keeps one (see solve_multigrid) and solves reuse its allocations: at 1024^2 a
+// fresh set costs about 70 MB of page faults per frame, a fifth of the solve.
+struct Workspace {
+  std::vector<Level> levels;
+  std::vector<Prolongation> prolong;  // prolong[l]: from level l+1 into level l
+  std::vector<std::uint8_t> fixed;
+  std::vector<float> residual;
+  bool busy = false;  // a solve on this thread is using it
+};
+
 template <int NC>
 class Multigrid {
  public:
-  Multigrid(const Problem& problem, const SolverOptions& options)
-      : problem_(problem), options_(options) {}
+  Multigrid(const Problem& problem, const SolverOptions& options, Workspace& ws)
+      : problem_(problem),
+        options_(options),
+        levels_(ws.levels),
+        prolong_(ws.prolong),
+        fixed_(ws.fixed),
+        r_(ws.residual) {}
 
   Solution run(const std::vector<float>* initial_guess);
   std::vector<double> factors(int cycles, unsigned seed);
@@ -69,10 +85,11 @@ class Multigrid {
  private:
   const Problem& problem_;
   const SolverOptions& options_;
-  std::vector<Level> levels_;
-  std::vector<Prolongation> prolong_;  // prolong_[l]: from level l+1 into level l
-  std::array<double, NC> b_norm_{};    // scale of relative residuals (see relative())
-  std::vector<std::uint8_t> fixed_;    // the problem's fixed pixels plus the unreachable ones
+  std::vector<Level>& levels_;
+  std::vector<Prolongation>& prolong_;  // prolong_[l]: from level l+1 into level l
+  std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
+  std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
+  std::vector<float>& r_;               // the residual of the initial guess, padded
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;
@@ -267,6 +284,32 @@ void Multigrid<NC>::build_prolongation(int l) {
     }
 }
 
+// Coarse points of the finest level whose Galerkin stencil is the plain one: every fine point
+// within 3 of their own (all that P^T A P reads there) is free, unanchored and linked to four free
+// neighbours. Their stencils are equal to the last bit, so one of them is computed and copied to
+// the others: most of an image is away from curves. Returns a flag per padded coarse point.
+std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
+  const int fs = F.stride;
+  // Integral image of the fine points that are not plain.
+  std::vector<int> sum(size_t(F.w + 1) * (F.h + 1), 0);
+  const auto S = [&](int x, int y) -> int& { return sum[size_t(y) * (F.w + 1) + x]; };
+  for (int y = 0; y < F.h; ++y)
+    for (int x = 0; x < F.w; ++x) {
+      const size_t k = F.at(x, y);
+      const bool plain = F.alive[k] && F.diag[k] == 4.0f && F.ae[k] == 1.0f && F.as[k] == 1.0f &&
+                         F.ae[k - 1] == 1.0f && F.as[k - fs] == 1.0f;
+      S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
+    }
+  std::vector<std::uint8_t> out(C.padded(), 0);
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      const int x0 = 2 * I - 3, y0 = 2 * J - 3, x1 = 2 * I + 4, y1 = 2 * J + 4;
+      if (x0 < 0 || y0 < 0 || x1 > F.w || y1 > F.h) continue;
+      out[C.at(I, J)] = S(x1, y1) - S(x0, y1) - S(x1, y0) + S(x0, y0) == 0;
+    }
+  return out;
+}
+
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
@@ -300,6 +343,31 @@ void Multigrid<NC>::galerkin_product(int l) {
       w[3] = P.c11[kc];
     }
   };
+  // On the finest level, plain coarse points (plain_points) are computed once, at `model`.
+  std::vector<std::uint8_t> plain;
+  size_t model = 0;
+  if (!F.nine_point) {
+    plain = plain_points(F, C);
+    const auto it = std::find(plain.begin(), plain.end(), 1);
+    if (it == plain.end())
+      plain.clear();
+    else
+      model = size_t(it - plain.begin());
+  }
+  const auto computed = [&](int I, int J) {
+    const size_t kc = C.at(I, J);
+    return plain.empty() || !plain[kc] || kc == model;
+  };
+  // Whether a computed coarse point reads the A P row of fine point (x, y): those within 1.
+  const auto needed = [&](int x, int y) {
+    if (plain.empty()) return true;
+    for (int J = (y - 1 + 1) >> 1; J <= (y + 1) >> 1; ++J)
+      for (int I = (x - 1 + 1) >> 1; I <= (x + 1) >> 1; ++I)
+        if (I < C.w && J < C.h && std::abs(2 * I - x) <= 1 && std::abs(2 * J - y) <= 1 &&
+            computed(I, J))
+          return true;
+    return false;
+  };
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
     // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
@@ -316,7 +384,7 @@ void Multigrid<NC>::galerkin_product(int l) {
       if (y < 0 || y >= F.h) continue;
       for (int x = 0; x < F.w; ++x) {
         const size_t k = F.at(x, y);
-        if (!F.alive[k]) continue;
+        if (!F.alive[k] || !needed(x, y)) continue;
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
         const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
         const Stencil st = stencil_at(F, k);
@@ -339,7 +407,7 @@ void Multigrid<NC>::galerkin_product(int l) {
     for (int J = J0; J < J1; ++J)
       for (int I = 0; I < C.w; ++I) {
         const size_t kc = C.at(I, J);
-        if (!C.alive[kc]) continue;
+        if (!C.alive[kc] || !computed(I, J)) continue;
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
         const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
                                     {P.x1[kc - 1], 1.0f, P.x0[kc]},
@@ -367,6 +435,18 @@ void Multigrid<NC>::galerkin_product(int l) {
         C.asw[kc] = float(-acc[4]);
       }
   });
+  if (plain.empty()) return;
+  for (int J = 0; J < C.h; ++J)
+    for (int I = 0; I < C.w; ++I) {
+      const size_t kc = C.at(I, J);
+      if (!plain[kc] || kc == model) continue;
+      C.diag[kc] = C.diag[model];
+      C.inv_diag[kc] = C.inv_diag[model];
+      C.ae[kc] = C.ae[model];
+      C.as[kc] = C.as[model];
+      C.ase[kc] = C.ase[model];
+      C.asw[kc] = C.asw[model];
+    }
 }
 
 // Dense LDLT of the coarsest level's free points.
@@ -450,19 +530,40 @@ struct RowCouplings {
 };
 
 // Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
-// equation asks given its neighbours. The whole row is computed into `buf` (contiguous, so it
-// vectorises) and the points of that parity are kept.
+// equation asks given its neighbours. Only the points of that parity are computed, every channel
+// with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
 template <int NC>
-void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict buf) {
+void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict) {
   const size_t n = L.padded(), row = L.at(0, y);
   const RowCouplings a(L, row);
+  const int s = a.stride;
   const float* __restrict id = &L.inv_diag[row];
+  float* __restrict e[NC];
+  const float* __restrict b[NC];
   for (int c = 0; c < NC; ++c) {
-    float* __restrict e = &L.e[c * n + row];
-    const float* __restrict b = &L.rhs[c * n + row];
-    a.neighbour_sum(e, buf, L.w);
-    for (int x = 0; x < L.w; ++x) buf[x] = (b[x] + buf[x]) * id[x];
-    for (int x = x_parity; x < L.w; x += 2) e[x] = buf[x];
+    e[c] = &L.e[c * n + row];
+    b[c] = &L.rhs[c * n + row];
+  }
+  if (!a.nine_point) {
+    for (int x = x_parity; x < L.w; x += 2) {
+      const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        const float t = pe * ec[x + 1] + pw * ec[x - 1] + ps * ec[x + s] + pn * ec[x - s];
+        e[c][x] = (b[c][x] + t) * d;
+      }
+    }
+    return;
+  }
+  for (int x = x_parity; x < L.w; x += 2) {
+    const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
+    const float pse = a.ase[x], pnw = a.anw[x], psw = a.asw[x], pne = a.ane[x];
+    for (int c = 0; c < NC; ++c) {
+      const float* ec = e[c];
+      float t = pe * ec[x + 1] + pw * ec[x - 1] + ps * ec[x + s] + pn * ec[x - s];
+      t += pse * ec[x + s + 1] + pnw * ec[x - s - 1] + psw * ec[x + s - 1] + pne * ec[x - s + 1];
+      e[c][x] = (b[c][x] + t) * d;
+    }
   }
 }
 
@@ -915,8 +1016,9 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
           for (int x = 0; x < p.width; ++x) u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
     });
   };
-  std::vector<float> u32, r;
+  std::vector<float> u32;
   std::vector<double> u64;
+  std::vector<float>& r = r_;
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
   b_norm_.fill(0.0);
   double rel;
@@ -991,8 +1093,32 @@ std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
   p.channels = 1;
   p.value.assign(p.pixel_count(), 0.0f);
   p.rhs.clear();
-  return Multigrid<1>(p, options).factors(cycles, seed);
+  Workspace ws;
+  return Multigrid<1>(p, options, ws).factors(cycles, seed);
 }
+
+namespace {
+
+// Runs a solve in this thread's workspace. A solve's parallel loops may run another task on
+// this thread while it waits (TBB work stealing), and that task may solve too: it gets a
+// workspace of its own.
+template <int NC>
+Solution solve_in_workspace(const Problem& problem, const SolverOptions& options,
+                            const std::vector<float>* initial_guess) {
+  thread_local Workspace kept;
+  if (kept.busy) {
+    Workspace own;
+    return Multigrid<NC>(problem, options, own).run(initial_guess);
+  }
+  struct Hold {
+    Workspace& ws;
+    explicit Hold(Workspace& w) : ws(w) { ws.busy = true; }
+    ~Hold() { ws.busy = false; }
+  } hold(kept);
+  return Multigrid<NC>(problem, options, kept).run(initial_guess);
+}
+
+}  // namespace
 
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
                          const std::vector<float>* initial_guess) {
@@ -1001,13 +1127,13 @@ Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
     throw std::invalid_argument("solver: initial guess has the wrong size");
   switch (problem.channels) {
     case 1:
-      return Multigrid<1>(problem, options).run(initial_guess);
+      return solve_in_workspace<1>(problem, options, initial_guess);
     case 2:
-      return Multigrid<2>(problem, options).run(initial_guess);
+      return solve_in_workspace<2>(problem, options, initial_guess);
     case 3:
-      return Multigrid<3>(problem, options).run(initial_guess);
+      return solve_in_workspace<3>(problem, options, initial_guess);
     default:
-      return Multigrid<4>(problem, options).run(initial_guess);
+      return solve_in_workspace<4>(problem, options, initial_guess);
   }
 }
 

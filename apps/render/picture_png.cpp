@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "apps/render/picture.hpp"
 #include "io/atomic_file.hpp"
+#include "io/png_encode.hpp"
 
 namespace wisp::render {
 namespace {
@@ -193,19 +193,25 @@ std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width
 void write_mask_png(const vector::HairMask& mask, int width, int height,
                     const std::filesystem::path& path) {
   const std::vector<std::uint8_t> coverage = rasterize_mask(mask, width, height);
-  const cv::Mat grey(height, width, CV_8UC1, const_cast<std::uint8_t*>(coverage.data()));
-  io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-    if (!cv::imwrite(tmp.string(), grey))
-      throw std::runtime_error(path.string() + ": cannot write the PNG file");
-  });
+  io::write_png_fast(path, {coverage.data(), width, height, 1, size_t(width)});
 }
 
 void write_frame_png(const FramePicture& pic, const std::filesystem::path& path) {
   const Surface s = draw(pic);
-  io::write_atomically(path, [&](const std::filesystem::path& tmp) {
-    if (cairo_surface_write_to_png(s.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error(path.string() + ": cannot write the PNG file");
-  });
+  // Cairo's RGB24 pixels are native-endian 0x00RRGGBB words; the PNG wants RGB bytes.
+  const unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  std::vector<std::uint8_t> rgb(size_t(pic.width) * pic.height * 3);
+  for (int y = 0; y < pic.height; ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + size_t(y) * stride);
+    std::uint8_t* out = &rgb[size_t(y) * pic.width * 3];
+    for (int x = 0; x < pic.width; ++x) {
+      out[3 * x] = (row[x] >> 16) & 0xff;
+      out[3 * x + 1] = (row[x] >> 8) & 0xff;
+      out[3 * x + 2] = row[x] & 0xff;
+    }
+  }
+  io::write_png_fast(path, {rgb.data(), pic.width, pic.height, 3, size_t(pic.width) * 3});
 }
 
 }  // namespace wisp::render

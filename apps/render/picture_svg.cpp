@@ -8,12 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "apps/render/picture.hpp"
 #include "io/atomic_file.hpp"
+#include "io/png_encode.hpp"
 
 namespace wisp::render {
 namespace {
@@ -86,14 +86,14 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 }
 
 std::string png_data_uri(const diffusion::Image& img) {
-  cv::Mat bgr(img.height, img.width, CV_8UC3);
   const size_t n = size_t(img.width) * img.height;
+  std::vector<std::uint8_t> rgb(3 * n);
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c)
-      bgr.data[3 * i + 2 - c] = static_cast<unsigned char>(
+      rgb[3 * i + c] = static_cast<std::uint8_t>(
           std::lround(std::clamp(img.planes[c * n + i], 0.0f, 1.0f) * 255));
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", bgr, png)) throw std::runtime_error("cannot encode the hair image");
+  const std::vector<std::uint8_t> png =
+      io::encode_png({rgb.data(), img.width, img.height, 3, size_t(img.width) * 3});
   return "data:image/png;base64," + base64(png);
 }
 

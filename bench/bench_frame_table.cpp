@@ -1,0 +1,202 @@
+// wisp-bench frame-table: every row of the frame-rate table of issue 13 (docs/performance.md) in
+// one run, each next to its target: the render of the default scene (frames per second at 512^2
+// and 1024^2, first frame, peak memory, per-stage medians), the solver at 512^2 and 1024^2
+// against Eigen's LDLT and CG, `wisp diffuse` of a 1024^2 drawing as a whole process, the
+// arrangement of 1000 plain wisps and the start-up of `wisp diffuse --help`. The rows come from
+// the other benchmarks (run as child processes of this executable, so each starts cold) and from
+// timing the wisp executable itself; the machine should be quiet, since every row is a wall time.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/benches.hpp"
+#include "diffusion/timer.hpp"
+
+namespace wisp::bench {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Runs a command and returns its standard output ("" when it fails).
+std::string output_of(const std::string& cmd) {
+  std::string out;
+  FILE* pipe = popen((cmd + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  return pclose(pipe) == 0 ? out : std::string();
+}
+
+json parse_or_null(const std::string& text) {
+  return text.empty() ? json() : json::parse(text, nullptr, false);
+}
+
+// Wall milliseconds and peak resident MB of one run of a command (output discarded): forked, so
+// that the peak is this child's alone.
+std::pair<double, double> timed_run(const std::vector<std::string>& argv) {
+  const auto t0 = diffusion::Clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(127);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  return {diffusion::ms_since(t0), usage.ru_maxrss / 1024.0};
+}
+
+template <class F>
+std::pair<double, double> median_run(int repeats, F&& run) {
+  std::vector<double> ms, mb;
+  for (int i = 0; i < repeats; ++i) {
+    const auto [t, m] = run();
+    ms.push_back(t);
+    mb.push_back(m);
+  }
+  std::sort(ms.begin(), ms.end());
+  std::sort(mb.begin(), mb.end());
+  return {ms[ms.size() / 2], mb[mb.size() / 2]};
+}
+
+// Shared libraries the dynamic loader maps for `exe` (ldd's list).
+int shared_libraries(const std::string& exe) {
+  std::istringstream lines(output_of("ldd " + exe));
+  int count = 0;
+  for (std::string line; std::getline(lines, line);) count += line.find("=>") != std::string::npos;
+  return count;
+}
+
+struct Row {
+  std::string work, measured, target;
+  bool meets = false;
+};
+
+std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, f, a, b, c, d);
+  return buf;
+}
+
+const json* find_size(const json& doc, int size) {
+  if (!doc.is_object() || !doc.contains("sizes")) return nullptr;
+  for (const json& s : doc["sizes"])
+    if (s.value("size", 0) == size) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
+int run_frame_table(const std::vector<std::string>&) {
+  const fs::path exe_dir = fs::canonical("/proc/self/exe").parent_path();
+  const std::string self = (exe_dir / "wisp-bench").string(), wisp = (exe_dir / "wisp").string();
+  std::vector<Row> rows;
+
+  std::fprintf(stderr, "frame-table: render\n");
+  const json render = parse_or_null(output_of(self + " render"));
+  const json* r1024 = find_size(render, 1024);
+  const json* r512 = find_size(render, 512);
+  if (r1024) {
+    const json& s = *r1024;
+    const double fps = s["frames_per_second"], first = s["first_frame_ms"],
+                 mb = s["peak_memory_mb"];
+    rows.push_back({"wisp-bench render, default scene, 24 frames, 1024^2",
+                    fmt("%.2f frames/s, first frame %.0f ms, peak %.0f MB", fps, first, mb),
+                    ">= 6 frames/s, first frame <= 300 ms, <= 300 MB",
+                    fps >= 6 && first <= 300 && mb <= 300});
+    const json& m = s["stage_ms_median"];
+    const double arr = m.value("arrangement", 0.0), sweep = m.value("arrangement_sweep", 0.0),
+                 solve = m.value("solve", 0.0), write = m.value("write", 0.0),
+                 wisps = m.value("wisps", 0.0);
+    rows.push_back({"per-frame medians at 1024^2",
+                    fmt("arrangement %.0f ms (CGAL sweep %.0f), solve %.0f, ", arr, sweep, solve) +
+                        fmt("write %.0f, wisps %.0f", write, wisps),
+                    "arrangement <= 100, solve <= 60, write <= 25, wisps <= 15",
+                    arr <= 100 && solve <= 60 && write <= 25 && wisps <= 15});
+  }
+  if (r512) {
+    const double fps = (*r512)["frames_per_second"];
+    rows.push_back({"same at 512^2", fmt("%.2f frames/s", fps), ">= 15 frames/s", fps >= 15});
+  }
+
+  std::fprintf(stderr, "frame-table: solver\n");
+  const json solver = parse_or_null(output_of(self + " solver 1024"));
+  const json* s1024 = find_size(solver, 1024);
+  const json* s512 = find_size(solver, 512);
+  if (s1024 && s512) {
+    const double ms = (*s1024)["multigrid_ms"], setup = (*s1024)["multigrid_setup_ms"],
+                 ldlt = (*s1024).value("speedup_vs_ldlt", 0.0),
+                 cg = (*s1024).value("speedup_vs_cg", 0.0);
+    rows.push_back({"wisp-bench solver 1024^2, 3 channels, 1e-5",
+                    fmt("%.0f ms, of it setup %.0f ms; %.1fx LDLT, %.1fx CG", ms, setup, ldlt, cg),
+                    "<= 40 ms: >= 80x LDLT and >= 400x CG in the same run",
+                    ms <= 40 && ldlt >= 80 && cg >= 400});
+    const double ms512 = (*s512)["multigrid_ms"], setup512 = (*s512)["multigrid_setup_ms"];
+    rows.push_back({"same at 512^2",
+                    fmt("%.0f ms (setup %.0f ms): 1024^2 costs %.1fx", ms512, setup512, ms / ms512),
+                    "<= 12 ms, and 1024^2 at most 4.5x of 512^2",
+                    ms512 <= 12 && ms / ms512 <= 4.5});
+  }
+
+  std::fprintf(stderr, "frame-table: diffuse\n");
+  const fs::path dir = fs::temp_directory_path() / ("wisp_bench_table_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string drawing = WISP_SOURCE_DIR "/data/drawings/wisps.xml";
+  const std::string png = (dir / "d.png").string(), stats = (dir / "d.json").string();
+  const auto diffuse = median_run(3, [&] {
+    return timed_run(
+        {wisp, "diffuse", drawing, "-o", png, "--size", "1024x1024", "--stats", stats});
+  });
+  std::ifstream stats_in(stats);
+  const json d = json::parse(stats_in, nullptr, false);
+  const double d_setup =
+      d.is_object() ? d["solver"].value("setup_ms", 0.0) + d["times_ms"].value("rasterize", 0.0)
+                    : 0.0;
+  rows.push_back({"wisp diffuse of a 1024^2 drawing, whole process",
+                  fmt("%.0f ms, rasterize + solver setup %.0f ms", diffuse.first, d_setup),
+                  "<= 100 ms", diffuse.first <= 100});
+
+  std::fprintf(stderr, "frame-table: arrangement\n");
+  const json arrangement =
+      parse_or_null(output_of(self + " arrangement --exact-timeout 0 --repeats 3"));
+  if (arrangement.is_object())
+    for (const json& scene : arrangement["scenes"])
+      for (const json& s : scene["sizes"])
+        if (scene["scene"] == "plain" && s["wisps"] == 1000) {
+          const double ms = s["arrangement_ms"];
+          rows.push_back({"wisp-bench arrangement, 1000 plain wisps", fmt("%.0f ms", ms),
+                          "<= 200 ms", ms <= 200});
+        }
+
+  std::fprintf(stderr, "frame-table: start-up\n");
+  const auto help = median_run(5, [&] { return timed_run({wisp, "diffuse", "--help"}); });
+  rows.push_back({"start-up: wisp diffuse --help",
+                  fmt("%.3f s and %.0f MB, %.0f shared libraries", help.first / 1000, help.second,
+                      shared_libraries(wisp)),
+                  "<= 30 ms; a command loads what it uses", help.first <= 30});
+  fs::remove_all(dir);
+
+  json out = {{"benchmark", "frame-table"}, {"rows", json::array()}};
+  for (const Row& r : rows)
+    out["rows"].push_back(
+        {{"work", r.work}, {"measured", r.measured}, {"target", r.target}, {"meets", r.meets}});
+  std::printf("%s\n", out.dump(2).c_str());
+  return 0;
+}
+
+}  // namespace wisp::bench
