@@ -187,10 +187,8 @@ std::optional<HighlightCover> highlight_cover(const WispCharts& charts,
   for (size_t w = 0; w < shapes.size(); ++w)
     for (const ChartPolygon& p : shapes[w]) {
       const WispChart& chart = *charts.chart[w];
-      const double step_t =
-          (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, charts.samples[w].size());
       std::vector<Vector2d> ring;
-      for (const Vector2d& tu : densify(p, step_t, 0.1))
+      for (const Vector2d& tu : highlight_outline(chart, charts.samples[w].size(), p))
         ring.push_back(chart.point(tu.x(), tu.y()));
       cover->add(int(w), std::move(ring));
     }

@@ -142,6 +142,12 @@ std::vector<Vector2d> densify(const ChartPolygon& poly, double step_t, double st
   return out;
 }
 
+std::vector<Vector2d> highlight_outline(const WispChart& chart, size_t sample_count,
+                                        const ChartPolygon& poly) {
+  const double step_t = (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, sample_count);
+  return densify(poly, step_t, 0.1);
+}
+
 void HighlightCover::add(int wisp, std::vector<Vector2d> ring) {
   if (ring.size() < 3) return;
   Ring r{wisp, std::move(ring), {}};

@@ -78,6 +78,11 @@ std::vector<ChartPolygon> anime_highlights(const WispChart& chart, const std::ve
 // polygon mapped to pixels follows the chart's bending.
 std::vector<Eigen::Vector2d> densify(const ChartPolygon& poly, double step_t, double step_u);
 
+// A highlight's outline densified for its wisp: steps no longer than the spacing of the wisp's
+// `sample_count` shading samples along it (at least 8 over the chart) and 0.1 across.
+std::vector<Eigen::Vector2d> highlight_outline(const WispChart& chart, size_t sample_count,
+                                               const ChartPolygon& poly);
+
 // The highlights of a frame in pixels, each visible where its wisp is (VisibleRegions).
 class HighlightCover {
  public:

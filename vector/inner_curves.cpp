@@ -66,19 +66,6 @@ ChartCurve fit_chart_curve(const WispChart& chart, std::vector<Vector2d> tu, boo
   return c;
 }
 
-// Chart points along a polygon's edges, at most `step` apart in t or u (in chart units), so the
-// mapped curve follows the chart's bending.
-std::vector<Vector2d> densify(const ChartPolygon& poly, double step_t, double step_u) {
-  std::vector<Vector2d> out;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
-    const int n = std::max({1, int(std::ceil(std::abs(b.x() - a.x()) / step_t)),
-                            int(std::ceil(std::abs(b.y() - a.y()) / step_u))});
-    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * (double(k) / n));
-  }
-  return out;
-}
-
 // Where a curve inside one wisp constrains the solve: where the wisp shows and, for the curves
 // that must not paint over its highlights, outside them.
 struct Clip {
@@ -167,10 +154,8 @@ void add_band_edges(const WispInterior& wisp, const Clip& clip, InnerCurves& out
 void add_highlights(const WispInterior& wisp, const Clip& clip, const HairStyle& style,
                     InnerCurves& out) {
   const WispChart& chart = *wisp.chart;
-  const double step_t =
-      (chart.t_end() - chart.t_begin()) / std::max<size_t>(8, wisp.samples->size());
   for (const ChartPolygon& p : *wisp.highlights) {
-    ChartCurve c = fit_chart_curve(chart, densify(p, step_t, 0.1), true);
+    ChartCurve c = fit_chart_curve(chart, highlight_outline(chart, wisp.samples->size(), p), true);
     if (c.path.piece_count() == 0) continue;
     diffusion::DiffusionCurve d;
     d.points = c.path.points;
