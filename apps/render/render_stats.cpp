@@ -51,9 +51,10 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
 }
 
 nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
-                         const std::vector<nlohmann::json>& written, const RunTimes& ms) {
+                         const std::vector<nlohmann::json>& records, int rendered,
+                         const RunTimes& ms) {
   std::map<std::string, std::vector<double>> stage;
-  for (const nlohmann::json& f : written)
+  for (const nlohmann::json& f : records)
     for (const auto& [name, t] : f["ms"].items()) stage[name].push_back(t.get<double>());
   nlohmann::json medians, totals;
   for (const auto& [name, v] : stage) {
@@ -62,12 +63,11 @@ nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frame
     for (double x : v) sum += x;
     totals[name] = sum;
   }
-  const int count = int(written.size());
   return {{"scene", scene_file},
           {"frames_in_animation", frames.frame_count()},
           {"range", {range.first, range.last}},
-          {"rendered", written.size()},
-          {"skipped", range.size() - count},
+          {"rendered", rendered},
+          {"skipped", range.size() - rendered},
           {"width", frames.scene.camera.width},
           {"height", frames.scene.camera.height},
           {"ms",
@@ -75,10 +75,10 @@ nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frame
             {"frames", ms.frames},
             {"video_and_contact_sheet", ms.video_and_contact_sheet},
             {"total", ms.total}}},
-          {"frames_per_second", ms.frames > 0 ? written.size() * 1000.0 / ms.frames : 0.0},
+          {"frames_per_second", ms.frames > 0 ? rendered * 1000.0 / ms.frames : 0.0},
           {"stage_ms_median", medians},
           {"stage_ms_total", totals},
-          {"frames", written}};
+          {"frames", records}};
 }
 
 }  // namespace wisp::render

@@ -27,8 +27,10 @@ struct RunTimes {
   double total = 0;
 };
 
-// The whole of stats.json. `written`: the frame records (frame_stats) in frame order.
+// The whole of stats.json. `records`: every frame record of the range (frame_stats) in frame
+// order, those of earlier runs included; `rendered`: how many of them this run wrote.
 nlohmann::json run_stats(const std::string& scene_file, const SceneFrames& frames, FrameRange range,
-                         const std::vector<nlohmann::json>& written, const RunTimes& ms);
+                         const std::vector<nlohmann::json>& records, int rendered,
+                         const RunTimes& ms);
 
 }  // namespace wisp::render
