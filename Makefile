@@ -3,7 +3,7 @@ BUILD   ?= build
 JOBS    ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-asan bench format format-check clean
+.PHONY: all deps configure build demo test test-asan fuzz bench format format-check clean
 
 all: build
 
@@ -41,6 +41,24 @@ test-asan: deps
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --output-on-failure -j $(JOBS)
 
+# Every fuzz target (tests/fuzz, docs/robustness.md) for FUZZ_SECONDS each, one after the other,
+# built with clang, libFuzzer, ASan and UBSan in build-fuzz/ (needs Debian's clang and
+# libfuzzer-14-dev). New inputs go to build-fuzz/corpus/<target>; a crash stops the run and is
+# saved as build-fuzz/crash-<target>-*: add it to tests/fuzz/corpus/<target> once fixed.
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS = scene_json style_json strand_json scenexml curvesetxml hair_file obj wsim ramp_png frame
+fuzz:
+	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DWISP_FUZZ=ON -DWISP_WERROR=OFF -DWISP_BUILD_BENCH=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_all
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p build-fuzz/corpus/$$t; \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  build-fuzz/bin/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -timeout=20 -rss_limit_mb=4096 \
+	    -print_final_stats=1 -artifact_prefix=build-fuzz/crash-$$t- \
+	    build-fuzz/corpus/$$t tests/fuzz/corpus/$$t || exit 1; \
+	done
+
 bench: build
 	$(BUILD)/bin/wisp-bench all
 
@@ -56,4 +74,4 @@ format-check: deps
 	  | sed 's/^/format-check: needs clang-format: /' | grep . && exit 1 || true
 
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan build-fuzz out

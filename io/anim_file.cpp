@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/input_file.hpp"
 
 namespace wisp::io {
 namespace {
@@ -36,7 +37,7 @@ class Writer {
 // Bounds-checked reads; running out is a truncated file.
 class Reader {
  public:
-  Reader(const std::vector<char>& bytes, std::size_t end, std::string name)
+  Reader(const std::string& bytes, std::size_t end, std::string name)
       : bytes_(bytes), end_(end), name_(std::move(name)) {}
   template <class T>
   T get(const char* what) {
@@ -55,7 +56,7 @@ class Reader {
   std::size_t at() const { return at_; }
 
  private:
-  const std::vector<char>& bytes_;
+  const std::string& bytes_;
   std::size_t end_, at_ = 0;
   std::string name_;
 };
@@ -108,10 +109,7 @@ void write_animation(const std::filesystem::path& path, const sim::Animation& an
 
 sim::Animation read_animation(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(name + ": cannot open the animation file");
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
-                                std::istreambuf_iterator<char>());
+  const std::string bytes = read_input_file(path, "animation file");
   if (bytes.size() < 4 || std::memcmp(bytes.data(), "WSIM", 4) != 0)
     throw std::runtime_error(name + ": not a .wsim animation (bad signature)");
   if (bytes.size() < 8 + 8) throw std::runtime_error(name + ": truncated .wsim file");
@@ -125,20 +123,31 @@ sim::Animation read_animation(const std::filesystem::path& path) {
   r.get<std::uint32_t>("header");
   sim::Animation anim;
   anim.fps = r.get<double>("header");
+  if (!(anim.fps > 0 && anim.fps <= 1000))
+    throw std::runtime_error(name + ": fps " + std::to_string(anim.fps) + " is not in (0, 1000]");
   const auto frames = r.get<std::uint32_t>("header");
   const auto strands = r.get<std::uint32_t>("header");
+  if (frames == 0) throw std::runtime_error(name + ": the animation has no frames");
   if (strands > (body - r.at()) / 4)
     throw std::runtime_error(name + ": truncated .wsim file (strand table)");
   std::vector<std::uint32_t> samples(strands);
   std::uint64_t total = 0;
-  for (auto& n : samples) total += n = r.get<std::uint32_t>("strand table");
+  for (auto& n : samples) {
+    total += n = r.get<std::uint32_t>("strand table");
+    if (n < 2) throw std::runtime_error(name + ": a strand has fewer than 2 samples");
+  }
   const auto shape = r.get<std::uint32_t>("head");
   if (shape > static_cast<std::uint32_t>(sim::HeadKind::Mesh))
     throw std::runtime_error(name + ": unknown head shape " + std::to_string(shape));
   anim.head.shape = static_cast<sim::HeadKind>(shape);
   anim.head.radii = r.vec("head");
+  if (!(anim.head.radii.allFinite() && anim.head.radii.minCoeff() > 0 &&
+        anim.head.radii.maxCoeff() <= 10))
+    throw std::runtime_error(name + ": head radii must be in (0, 10] m");
   const std::uint64_t vertices = r.get<std::uint32_t>("head");
   const std::uint64_t triangles = r.get<std::uint32_t>("head");
+  if (anim.head.shape == sim::HeadKind::Mesh && triangles == 0)
+    throw std::runtime_error(name + ": the head is a mesh without triangles");
   // Check the announced size before allocating.
   const std::uint64_t frame_bytes = 4 + 8 + 24 + 32 + 24 * total;
   const std::uint64_t expected = r.at() + 24 * vertices + 12 * triangles + frames * frame_bytes;
@@ -153,8 +162,15 @@ sim::Animation read_animation(const std::filesystem::path& path) {
   if (stored != fnv1a(bytes.data(), body))
     throw std::runtime_error(name + ": checksum mismatch: the .wsim file is corrupt");
 
+  // Positions stay near the head: the projection and the rasterizer take them as they are.
+  const auto in_world = [&](const Eigen::Vector3d& p, const char* what) {
+    if (!(p.allFinite() && p.norm() <= sim::kMaxWorldMetres))
+      throw std::runtime_error(name + ": " + what + " is not within " +
+                               std::to_string(int(sim::kMaxWorldMetres)) + " m of the head");
+    return p;
+  };
   anim.head.mesh.vertices.resize(vertices);
-  for (auto& v : anim.head.mesh.vertices) v = r.vec("head mesh");
+  for (auto& v : anim.head.mesh.vertices) v = in_world(r.vec("head mesh"), "a head vertex");
   anim.head.mesh.triangles.resize(triangles);
   for (auto& t : anim.head.mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
@@ -167,14 +183,18 @@ sim::Animation read_animation(const std::filesystem::path& path) {
   for (auto& f : anim.frames) {
     f.frame = static_cast<int>(r.get<std::uint32_t>("frame"));
     f.time = r.get<double>("frame");
-    f.head.position = r.vec("frame");
+    f.head.position = in_world(r.vec("frame"), "a head position");
     const double qw = r.get<double>("frame"), qx = r.get<double>("frame"),
                  qy = r.get<double>("frame"), qz = r.get<double>("frame");
     f.head.rotation = Eigen::Quaterniond(qw, qx, qy, qz);
+    const double norm = f.head.rotation.norm();
+    if (!(std::abs(norm - 1) < 1e-6))
+      throw std::runtime_error(name + ": frame " + std::to_string(f.frame) +
+                               ": the head rotation is not a unit quaternion");
     f.strands.resize(strands);
     for (std::uint32_t s = 0; s < strands; ++s) {
       f.strands[s].resize(samples[s]);
-      for (auto& p : f.strands[s]) p = r.vec("frame");
+      for (auto& p : f.strands[s]) p = in_world(r.vec("frame"), "a strand sample");
     }
   }
   return anim;

@@ -10,17 +10,26 @@
 
 namespace wisp::io {
 
-void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(const std::filesystem::path& tmp)>& write) {
+void check_writable(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw std::runtime_error(path.string() + ": is a folder; expected a file name");
   if (!fs::is_directory(dir, ec))
     throw std::runtime_error(path.string() + ": output folder '" + dir.string() +
                              "' does not exist");
   if (access(dir.c_str(), W_OK) != 0)
     throw std::runtime_error(path.string() + ": output folder '" + dir.string() +
                              "' is not writable");
+}
+
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path& tmp)>& write) {
+  namespace fs = std::filesystem;
+  check_writable(path);
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
   const fs::path tmp = dir / ("." + path.stem().string() + ".partial-" + std::to_string(getpid()) +
                               path.extension().string());
   try {

@@ -9,6 +9,11 @@
 
 namespace wisp::io {
 
+// Checks that `path` can be written (its folder exists and is writable, and it is not itself a
+// folder), so that commands refuse a bad output path before any work. Throws
+// std::runtime_error naming `path`.
+void check_writable(const std::filesystem::path& path);
+
 // Calls write(tmp) with a temporary path in the same folder as `path` (same extension, so writers
 // that pick a format from the extension still work), then renames tmp to path. If write throws,
 // the temporary is removed and the exception propagates. Throws std::runtime_error naming `path`

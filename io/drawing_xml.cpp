@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/input_file.hpp"
 
 namespace wisp::io {
 namespace {
@@ -89,8 +90,8 @@ class Reader {
     for (const XMLElement* p = set->FirstChildElement("control_point"); p;
          p = p->NextSiblingElement("control_point")) {
       const double x = number(p, "x"), y = number(p, "y");
-      points.emplace_back(dialect_ == XmlDialect::CurveSetXML ? Eigen::Vector2d(y, x)
-                                                              : Eigen::Vector2d(x, y));
+      points.push_back(on_canvas(
+          p, dialect_ == XmlDialect::CurveSetXML ? Eigen::Vector2d(y, x) : Eigen::Vector2d(x, y)));
     }
     check_count(e, "nb_control_points", points.size(), true);
     const size_t n = points.size();
@@ -158,7 +159,9 @@ class Reader {
     const XMLElement* blur = e->FirstChildElement("blur_points_set");
     c.blur = stops<BlurStop>(blur, "best_scale", [&](const XMLElement* s) {
       const double v = number(s, "value");
-      if (v < 0) fail(s, "blur value must be >= 0");
+      if (v < 0 || v > std::max(width_, height_))
+        fail(s, "blur value must be in [0, " + std::to_string(std::max(width_, height_)) +
+                    "] (the image's larger side)");
       return BlurStop{0, float(v)};
     });
     check_count(e, "nb_blur_points", c.blur.size(), false);
@@ -186,7 +189,7 @@ class Reader {
   std::vector<Eigen::Vector2d> points(const XMLElement* set, const char* child) const {
     std::vector<Eigen::Vector2d> out;
     for (const XMLElement* p = set->FirstChildElement(child); p; p = p->NextSiblingElement(child))
-      out.emplace_back(number(p, "x"), number(p, "y"));
+      out.push_back(on_canvas(p, Eigen::Vector2d(number(p, "x"), number(p, "y"))));
     return out;
   }
 
@@ -245,8 +248,8 @@ class Reader {
     if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
       fail(root, "image size " + std::to_string(w) + "x" + std::to_string(h) +
                      " must be between 1 and " + std::to_string(kMaxImageSide));
-    out.drawing.width = w;
-    out.drawing.height = h;
+    out.drawing.width = width_ = w;
+    out.drawing.height = height_ = h;
 
     const XMLElement* set =
         dialect_ == XmlDialect::SceneXML ? root->FirstChildElement("curve_set") : root;
@@ -278,8 +281,25 @@ class Reader {
   }
 
  private:
+  // Points within kReach image sides of the image: every primitive is drawn at most that far out,
+  // however the drawing is scaled, so scaled coordinates stay far from integer overflow.
+  static constexpr double kReach = 64;
+  Eigen::Vector2d on_canvas(const XMLElement* e, const Eigen::Vector2d& p) const {
+    if (std::abs(p.x()) > kReach * width_ || std::abs(p.y()) > kReach * height_)
+      fail(e, "point (" + fmt_number(p.x()) + ", " + fmt_number(p.y()) + ") lies more than " +
+                  std::to_string(int(kReach)) + " image sides outside the " +
+                  std::to_string(width_) + "x" + std::to_string(height_) + " image");
+    return p;
+  }
+  static std::string fmt_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+  }
+
   std::string name_;
   XmlDialect dialect_;
+  int width_ = 1, height_ = 1;
   mutable std::vector<std::string> warnings_;
 };
 
@@ -322,11 +342,7 @@ DrawingFile parse_drawing_xml(const std::string& text, const std::string& name) 
 }
 
 DrawingFile read_drawing_xml(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path.string() + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_drawing_xml(text.str(), path.string());
+  return parse_drawing_xml(read_input_file(path, "drawing file"), path.string());
 }
 
 std::string format_drawing_xml(const diffusion::Drawing& d, XmlDialect dialect) {

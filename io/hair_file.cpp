@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/input_file.hpp"
 
 namespace wisp::io {
 namespace {
@@ -16,7 +17,7 @@ constexpr std::uint32_t kSegments = 1, kPoints = 2, kThickness = 4, kTransparenc
 constexpr std::size_t kHeaderSize = 128, kInfoSize = 88;
 
 template <class T>
-T read_at(const std::vector<char>& bytes, std::size_t offset) {
+T read_at(const std::string& bytes, std::size_t offset) {
   T v;
   std::memcpy(&v, bytes.data() + offset, sizeof(T));
   return v;
@@ -31,10 +32,7 @@ void append(std::string& out, const T& v) {
 
 HairFile read_hair_file(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(name + ": cannot open the .hair file");
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
-                                std::istreambuf_iterator<char>());
+  const std::string bytes = read_input_file(path, ".hair file");
   if (bytes.size() < kHeaderSize)
     throw std::runtime_error(name + ": truncated .hair header (" + std::to_string(bytes.size()) +
                              " of 128 bytes)");
@@ -50,6 +48,9 @@ HairFile read_hair_file(const std::filesystem::path& path) {
   for (int k = 0; k < 3; ++k) hair.default_color[k] = read_at<float>(bytes, 28 + 4 * k);
   hair.info.assign(bytes.data() + 40, strnlen(bytes.data() + 40, kInfoSize));
   hair.has_segments = flags & kSegments;
+  if (strands > points)
+    throw std::runtime_error(name + ": the header announces " + std::to_string(strands) +
+                             " strands but only " + std::to_string(points) + " points");
   if (!(flags & kPoints)) throw std::runtime_error(name + ": the .hair file has no points array");
   if (!hair.has_segments && hair.default_segments == 0)
     throw std::runtime_error(name + ": no segments array and default segments is 0");

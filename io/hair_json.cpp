@@ -8,19 +8,13 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/input_file.hpp"
 
 namespace wisp::io {
 
 std::vector<sim::Polyline> read_strands_json(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(name + ": cannot open the strand file");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(name + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json doc = parse_json(read_input_file(path, "strand file"), name);
   if (!doc.is_object()) throw std::runtime_error(name + ": expected a JSON object");
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (it.key() != "format" && it.key() != "version" && it.key() != "strands")

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "io/input_file.hpp"
 #include "io/ramp_file.hpp"
 #include "io/scene.hpp"
 
@@ -63,7 +64,7 @@ class Fields {
   }
   void get(const char* key, int& out) {
     if (const json* v = find(key)) {
-      if (!v->is_number_integer()) fail(name(key), "expected an integer, got " + v->dump());
+      if (!v->is_number_integer()) fail(name(key), "expected an integer, got " + json_excerpt(*v));
       const auto n = v->get<long long>();
       if (n < -1000000000LL || n > 1000000000LL) fail(name(key), "out of range");
       out = static_cast<int>(n);
@@ -72,19 +73,19 @@ class Fields {
   void get(const char* key, std::uint64_t& out) {
     if (const json* v = find(key)) {
       if (!v->is_number_unsigned())
-        fail(name(key), "expected a non-negative integer, got " + v->dump());
+        fail(name(key), "expected a non-negative integer, got " + json_excerpt(*v));
       out = v->get<std::uint64_t>();
     }
   }
   void get(const char* key, bool& out) {
     if (const json* v = find(key)) {
-      if (!v->is_boolean()) fail(name(key), "expected true or false, got " + v->dump());
+      if (!v->is_boolean()) fail(name(key), "expected true or false, got " + json_excerpt(*v));
       out = v->get<bool>();
     }
   }
   void get(const char* key, std::string& out) {
     if (const json* v = find(key)) {
-      if (!v->is_string()) fail(name(key), "expected a string, got " + v->dump());
+      if (!v->is_string()) fail(name(key), "expected a string, got " + json_excerpt(*v));
       out = v->get<std::string>();
     }
   }
@@ -96,7 +97,7 @@ class Fields {
     if (const json* v = find(key)) {
       const Eigen::Vector3d c = vector3(*v, name(key));
       if (c.minCoeff() < 0 || c.maxCoeff() > 1)
-        fail(name(key), "colour components must be in [0, 1], got " + v->dump());
+        fail(name(key), "colour components must be in [0, 1], got " + json_excerpt(*v));
       out = c.cast<float>();
     }
   }
@@ -122,14 +123,14 @@ class Fields {
   }
 
   double number(const json& v, const std::string& field) const {
-    if (!v.is_number()) fail(field, "expected a number, got " + v.dump());
+    if (!v.is_number()) fail(field, "expected a number, got " + json_excerpt(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(field, "not a finite number");
     return d;
   }
   Eigen::Vector3d vector3(const json& v, const std::string& field) const {
     if (!v.is_array() || v.size() != 3)
-      fail(field, "expected an array of 3 numbers, got " + v.dump());
+      fail(field, "expected an array of 3 numbers, got " + json_excerpt(v));
     return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
   }
 
@@ -298,7 +299,7 @@ void parse_shading(Fields& f, vector::HairStyle& st) {
       s.ramp.reset();
     } else {
       if (!r->is_string() || r->get<std::string>().empty())
-        f.fail(f.name("ramp"), "expected an image file name or null, got " + r->dump());
+        f.fail(f.name("ramp"), "expected an image file name or null, got " + json_excerpt(*r));
       const std::string file = r->get<std::string>();
       const std::filesystem::path p = std::filesystem::path(file).is_absolute()
                                           ? std::filesystem::path(file)
@@ -462,13 +463,11 @@ void apply_preset(Fields& f, const std::string& value, Scene& s) {
     }
     path = data_dir() / "styles" / (value + ".json");
   }
-  std::ifstream in(path);
-  if (!in) f.fail(field, path.string() + ": cannot open the preset file");
   json doc;
   try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    f.fail(field, path.string() + ": invalid JSON: " + e.what());
+    doc = parse_json(read_input_file(path, "style preset file"), path.string());
+  } catch (const std::exception& e) {
+    f.fail(field, e.what());
   }
   try {
     Fields p(doc, "", path.string());
@@ -486,7 +485,7 @@ void parse_style(Fields& f, Scene& s) {
   // A preset first, whatever the order of the keys: the scene's own fields override it.
   if (const json* p = f.find("preset")) {
     if (!p->is_string())
-      f.fail(f.name("preset"), "expected a preset name or a .json file, got " + p->dump());
+      f.fail(f.name("preset"), "expected a preset name or a .json file, got " + json_excerpt(*p));
     apply_preset(f, p->get<std::string>(), s);
   }
   for (const auto& [key, read] : style_fields()) read(f, key, s.style);
@@ -495,7 +494,8 @@ void parse_style(Fields& f, Scene& s) {
 
 void parse_light(Fields& f, Scene& s) {
   f.get("direction", s.light_dir);
-  if (!(s.light_dir.norm() > 1e-9)) f.fail(f.name("direction"), "must be a non-zero vector");
+  if (!(s.light_dir.norm() > 1e-9 && s.light_dir.cwiseAbs().maxCoeff() <= 1e6))
+    f.fail(f.name("direction"), "must be a non-zero vector with components in [-1e6, 1e6]");
   s.light_dir.normalize();
 }
 
@@ -551,20 +551,7 @@ Scene parse_scene(const json& doc, const std::filesystem::path& path) {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the scene file");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    // nlohmann's message carries the line and column (or the overflowing number).
-    std::string what = e.what();
-    auto at = what.find("] ");
-    at = at == std::string::npos ? at : at + 2;
-    throw std::invalid_argument(
-        path.string() + ": invalid JSON: " + (at == std::string::npos ? what : what.substr(at)));
-  }
-  return parse_scene(doc, path);
+  return parse_scene(parse_json(read_input_file(path, "scene file"), path.string()), path);
 }
 
 }  // namespace wisp::io

@@ -7,11 +7,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/input_file.hpp"
+
 namespace wisp::io {
+namespace {
+
+// A head needs far fewer; these bound the collision shape's and the ray tests' work.
+constexpr std::size_t kMaxVertices = 1000000, kMaxTriangles = 2000000;
+
+}  // namespace
 
 sim::TriangleMesh read_obj(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the OBJ file");
+  std::istringstream in(read_input_file(path, "OBJ file"));
   sim::TriangleMesh mesh;
   std::string line;
   int number = 0;
@@ -26,6 +33,8 @@ sim::TriangleMesh read_obj(const std::filesystem::path& path) {
     if (tag == "v") {
       Eigen::Vector3d v;
       if (!(s >> v.x() >> v.y() >> v.z()) || !v.allFinite()) fail("expected a vertex 'v x y z'");
+      if (mesh.vertices.size() >= kMaxVertices)
+        fail("more than " + std::to_string(kMaxVertices) + " vertices");
       mesh.vertices.push_back(v);
     } else if (tag == "f") {
       std::vector<int> face;
@@ -47,6 +56,8 @@ sim::TriangleMesh read_obj(const std::filesystem::path& path) {
         face.push_back(static_cast<int>(resolved));
       }
       if (face.size() < 3) fail("a face needs at least 3 vertices");
+      if (mesh.triangles.size() + face.size() > kMaxTriangles)
+        fail("more than " + std::to_string(kMaxTriangles) + " triangles");
       for (std::size_t k = 1; k + 1 < face.size(); ++k)
         mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
     }

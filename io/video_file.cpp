@@ -1,6 +1,8 @@
 // write_video and count_video_frames: see video_file.hpp.
 #include "io/video_file.hpp"
 
+#include <unistd.h>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <stdexcept>
@@ -70,6 +72,33 @@ std::string write_video(const std::filesystem::path& path,
                              ": OpenCV could not write a decodable MP4 (tried avc1 and mp4v)");
   });
   return used;
+}
+
+void check_video(const std::filesystem::path& path, int width, int height, double fps) {
+  if (!(fps > 0 && fps <= 1000))
+    throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
+  namespace fs = std::filesystem;
+  const fs::path probe =
+      fs::temp_directory_path() / ("wisp-video-probe-" + std::to_string(getpid()) + ".mp4");
+  const cv::Mat blank(height, width, CV_8UC3, cv::Scalar::all(0));
+  bool ok = false;
+  for (const char* fourcc : {"avc1", "mp4v"}) {
+    {
+      cv::VideoWriter writer;
+      if (writer.open(probe.string(), cv::CAP_FFMPEG,
+                      cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]), fps,
+                      blank.size(), true))
+        writer.write(blank);
+    }
+    ok = count_video_frames(probe) == 1;
+    std::error_code ec;
+    fs::remove(probe, ec);
+    if (ok) return;
+  }
+  throw std::runtime_error(path.string() + ": cannot encode a " + std::to_string(width) + "x" +
+                           std::to_string(height) +
+                           " video (tried avc1 and mp4v); choose another size, or set "
+                           "render.video to false");
 }
 
 int count_video_frames(const std::filesystem::path& path) {

@@ -167,6 +167,19 @@ void validate(const WindParams& wind);
 void validate(const SimParams& sim);
 void validate(const CameraParams& camera);
 
+// Budgets: the largest simulation a scene may ask for, checked before anything is allocated
+// (docs/scene.md gives the time and memory measured at these limits).
+constexpr double kMaxWorldMetres = 100;     // every position, from the head's centre
+constexpr double kMaxGuideSamples = 1e6;    // guides x samples per guide
+constexpr double kMaxSimWork = 2e8;         // guide samples x sub-steps x iterations
+constexpr double kMaxAnimationBytes = 2e9;  // frames x guide samples x 24 bytes, in memory
+constexpr int kMaxCameraSide = 16384;       // io::kMaxImageSide
+
+// The simulation's size against the budgets above: `samples` guide samples in all (guides x
+// (segments + 1) for procedural hair, the strands actually kept for files). Throws
+// std::invalid_argument("field: what") naming the parameters to lower.
+void check_budget(double samples, const MotionParams& motion, const SimParams& sim);
+
 // The building block of every validate(): throws std::invalid_argument("field: what") unless ok.
 inline void require(bool ok, const std::string& field, const std::string& what) {
   if (!ok) throw std::invalid_argument(field + ": " + what);

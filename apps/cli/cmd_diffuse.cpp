@@ -43,6 +43,14 @@ void run_diffuse(const DiffuseArgs& a) {
   // Arguments are checked before any work, so that their errors come first and alone.
   int width = 0, height = 0;
   if (!a.size.empty()) std::tie(width, height) = render::parse_size("--size", a.size);
+  // Every output path before the work, so that no output is written when one of them is bad.
+  io::check_writable(a.output);
+  for (const auto& [option, path] : {std::pair{"--stats", a.stats}, std::pair{"--xml", a.xml}})
+    if (!path.empty()) try {
+        io::check_writable(path);
+      } catch (const std::exception& e) {
+        throw std::invalid_argument(std::string(option) + ": " + e.what());
+      }
 
   auto t0 = diffusion::Clock::now();
   const io::DrawingFile file = io::read_drawing_xml(a.input);

@@ -3,7 +3,9 @@
 // by a preview video, a contact sheet and stats.json (apps/render/render_range.hpp,
 // render_stats.hpp). This file reads the command line, checks it and reports progress.
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -22,6 +24,7 @@
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene.hpp"
+#include "io/video_file.hpp"
 #include "sim/choices.hpp"
 
 namespace wisp::cli {
@@ -35,6 +38,7 @@ struct RenderArgs {
   std::string scene, outdir, frames, size, anim, stats;
   std::string svg_style = sim::choice_name(render::SvgStyle::Embedded);
   int threads = 0;
+  double max_memory_gib = 8;
   bool force = false, quiet = false, masks = false, no_previews = false;
 };
 
@@ -94,12 +98,29 @@ std::vector<nlohmann::json> render_frames(const render::SceneFrames& frames,
   return written;
 }
 
+std::string gib(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / double(1 << 30));
+  return buf;
+}
+
+// How many frames may render at once within --max-memory (at most `threads`); throws naming the
+// size's origin (`field`) when even one frame does not fit.
+int frames_in_memory(const RenderArgs& a, const std::string& field, int width, int height,
+                     int threads) {
+  const double limit = a.max_memory_gib * double(1 << 30);
+  if (render::render_peak_bytes(width, height, 1) > limit)
+    throw std::invalid_argument(
+        field + ": a " + std::to_string(width) + "x" + std::to_string(height) +
+        " frame needs about " + gib(render::render_peak_bytes(width, height, 1)) +
+        ", above --max-memory " + gib(limit) + "; lower the size or raise --max-memory");
+  int parallel = std::max(1, threads);
+  while (parallel > 1 && render::render_peak_bytes(width, height, parallel) > limit) --parallel;
+  return parallel;
+}
+
 void run_render(const RenderArgs& a) {
   const auto t_start = Clock::now();
-  std::unique_ptr<tbb::global_control> threads;
-  if (a.threads > 0)
-    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                    size_t(a.threads));
 
   // Arguments first, so that their errors come before any work; the scene before the output
   // folder is touched.
@@ -110,13 +131,31 @@ void run_render(const RenderArgs& a) {
   const render::SvgStyle svg_style = *sim::parse_choice<render::SvgStyle>(a.svg_style);
   io::Scene scene = io::load_scene(a.scene);
   const fs::path out(a.outdir);
-  render::prepare_frame_folder(out, asked.first, asked.second);
+  render::check_frame_folder(out);
+
+  // The size's budgets before any work: memory (fewer frames at once when all would not fit)
+  // and the video encoder (which refuses some sizes only after every frame was written).
+  const int width = size.first > 0 ? size.first : scene.camera.width;
+  const int height = size.first > 0 ? size.second : scene.camera.height;
+  const std::string size_field =
+      size.first > 0 ? "--size " + a.size : a.scene + ": camera.width x camera.height";
+  const int cores = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+  const int parallel = frames_in_memory(a, size_field, width, height, cores);
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(parallel));
+  if (scene.render.video) {
+    try {
+      io::check_video(out / "preview.mp4", width, height, scene.sim.fps);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(size_field + ": " + e.what());
+    }
+  }
 
   auto t0 = Clock::now();
   const render::SceneFrames frames = simulate_and_project(std::move(scene), a, size);
   render::RunTimes ms;
   ms.simulate_and_project = ms_since(t0);
   const render::FrameRange range = frame_range(asked, frames.frame_count());
+  render::prepare_frame_folder(out, asked.first, asked.second);
 
   render::FrameSetup setup = render::frame_setup(frames.scene);
   setup.flat_regions = svg_style == render::SvgStyle::Flat;
@@ -133,10 +172,11 @@ void run_render(const RenderArgs& a) {
   ms.total = ms_since(t_start);
   const fs::path stats = a.stats.empty() ? out / "stats.json" : fs::path(a.stats);
   if (stats.has_parent_path()) fs::create_directories(stats.parent_path());
-  io::write_text_atomically(
-      stats,
-      render::run_stats(a.scene, frames.scene, frames.frame_count(), range, written, ms).dump(2) +
-          "\n");
+  const std::vector<nlohmann::json> records = render::range_records(out, range, written);
+  io::write_text_atomically(stats, render::run_stats(a.scene, frames.scene, frames.frame_count(),
+                                                     range, records, int(written.size()), ms)
+                                           .dump(2) +
+                                       "\n");
   if (!a.quiet)
     std::fprintf(stderr, "render: %d frames written, %d already there; output in %s\n",
                  int(written.size()), range.size() - int(written.size()),
@@ -167,6 +207,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--no-previews", args->no_previews,
                 "No preview video or contact sheet (several renders share the folder: `wisp "
                 "assemble` writes them)");
+  cmd->add_option("--max-memory", args->max_memory_gib,
+                  "Memory budget in GiB (default 8): fewer frames render at once above it, and a "
+                  "frame that alone needs more is refused before any work")
+      ->check(CLI::Range(0.001, 1e6));
   cmd->add_flag("--force", args->force, "Render frames that already exist again");
   cmd->add_flag("--masks", args->masks, "Also write each frame's hair mask (mask_NNNN.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress output");

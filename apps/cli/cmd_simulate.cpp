@@ -9,6 +9,7 @@
 #include "apps/render/scene_setup.hpp"
 #include "diffusion/timer.hpp"
 #include "io/anim_file.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene.hpp"
 #include "sim/simulate.hpp"
 
@@ -28,6 +29,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("-q,--quiet", opt->quiet, "no progress bar or summary");
   cmd->callback([opt]() {
     io::Scene scene = io::load_scene(opt->scene);
+    io::check_writable(opt->output);
     if (!opt->model.empty()) scene.sim.model = *sim::parse_choice<sim::SimModel>(opt->model);
     const sim::SimSetup setup = render::load_sim_setup(scene);
     const auto start = diffusion::Clock::now();

@@ -21,8 +21,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return wisp::cli::report_parse_error(app, e, "wisp");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "wisp: error: %s\n", e.what());
-    return 2;
+    return wisp::cli::report_error("wisp", e.what());
   }
   return 0;
 }

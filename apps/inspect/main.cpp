@@ -262,8 +262,7 @@ int main(int argc, char** argv) {
   try {
     wisp::inspect::run(a);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "wisp-inspect: error: %s\n", e.what());
-    return 2;
+    return wisp::cli::report_error("wisp-inspect", e.what());
   }
   return 0;
 }

@@ -3,14 +3,20 @@
 
 #include <tbb/parallel_for.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <mutex>
 #include <regex>
 #include <stdexcept>
 
 #include "apps/render/render_stats.hpp"
 #include "diffusion/timer.hpp"
+#include "io/atomic_file.hpp"
 #include "io/contact_sheet.hpp"
 #include "io/video_file.hpp"
 
@@ -32,6 +38,15 @@ int block_end(const RangePlan& plan, int b) {
 bool frame_done(const fs::path& folder, int k) {
   return fs::exists(folder / frame_file_name(k, "png")) &&
          fs::exists(folder / frame_file_name(k, "svg"));
+}
+
+std::filesystem::path record_path(const fs::path& folder, int k) {
+  return folder / ".stats" / frame_file_name(k, "json");
+}
+
+// Whether process `pid` still runs (a temporary's writer).
+bool running(long pid) {
+  return pid > 0 && (kill(pid_t(pid), 0) == 0 || errno == EPERM);
 }
 
 }  // namespace
@@ -60,20 +75,45 @@ std::string frame_file_name(int k, const char* ext) {
   return buf;
 }
 
+void check_frame_folder(const fs::path& folder) {
+  std::error_code ec;
+  if (fs::exists(folder, ec)) {
+    if (!fs::is_directory(folder, ec))
+      throw std::runtime_error(folder.string() + ": exists and is not a folder");
+    if (access(folder.c_str(), W_OK) != 0)
+      throw std::runtime_error(folder.string() + ": the output folder is not writable");
+    return;
+  }
+  fs::path up = fs::absolute(folder, ec).parent_path();
+  while (!up.empty() && !fs::exists(up, ec) && up != up.parent_path()) up = up.parent_path();
+  if (!fs::is_directory(up, ec) || access(up.c_str(), W_OK) != 0)
+    throw std::runtime_error(folder.string() + ": cannot create the output folder (" + up.string() +
+                             " is not a writable folder)");
+}
+
 void prepare_frame_folder(const fs::path& folder, int first, int last) {
   std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (!fs::is_directory(folder))
+  fs::create_directories(folder / ".stats", ec);
+  if (!fs::is_directory(folder / ".stats"))
     throw std::runtime_error(folder.string() + ": cannot create the output folder");
-  // io::write_atomically's temporaries: ".frame_0005.partial-<pid>.png".
-  const std::regex temporary(R"(\.(frame|mask)_(\d+)\.partial-\d+\.(png|svg))");
-  for (const auto& entry : fs::directory_iterator(folder, ec)) {
-    std::smatch m;
-    const std::string name = entry.path().filename().string();
-    if (std::regex_match(name, m, temporary) && std::stoi(m[2]) >= first &&
-        (last < 0 || std::stoi(m[2]) < last))
-      fs::remove(entry.path(), ec);
-  }
+  // io::write_atomically's temporaries: ".frame_0005.partial-<pid>.png", ".preview.partial-..".
+  const std::regex frame(R"(\.(frame|mask)_(\d+)\.partial-(\d+)\.(png|svg|json))");
+  const std::regex other(R"(\.[a-z]+\.partial-(\d+)\.(mp4|png|json))");
+  for (const fs::path& dir : {folder, folder / ".stats"})
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      std::smatch m;
+      const std::string name = entry.path().filename().string();
+      const bool ours_to_redo =
+          std::regex_match(name, m, frame) &&
+          ((std::stoi(m[2]) >= first && (last < 0 || std::stoi(m[2]) < last)) ||
+           !running(std::stol(m[3])));
+      const bool orphan = std::regex_match(name, m, other) && !running(std::stol(m[1]));
+      if (ours_to_redo || orphan) fs::remove(entry.path(), ec);
+    }
+}
+
+double render_peak_bytes(int width, int height, int parallel) {
+  return kRenderBaseBytes + kRenderBytesPerPixel * double(width) * height * parallel;
 }
 
 int RangePlan::write_count() const {
@@ -122,6 +162,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                        files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
       const double write_ms = ms_since(t_write);
       stats[k] = frame_stats(frames, k, r, write_ms, ms_since(t_frame));
+      io::write_text_atomically(record_path(files.folder, k), stats[k].dump() + "\n");
       std::lock_guard<std::mutex> lock(mutex);
       if (written) written(++count);
     }
@@ -137,6 +178,23 @@ std::vector<int> missing_frames(const fs::path& folder, FrameRange range) {
   for (int k = range.first; k < range.last; ++k)
     if (!frame_done(folder, k)) missing.push_back(k);
   return missing;
+}
+
+std::vector<nlohmann::json> range_records(const fs::path& folder, FrameRange range,
+                                          const std::vector<nlohmann::json>& written) {
+  std::vector<nlohmann::json> out;
+  std::size_t next = 0;
+  for (int k = range.first; k < range.last; ++k) {
+    if (next < written.size() && written[next].value("frame", -1) == k) {
+      out.push_back(written[next++]);
+      continue;
+    }
+    std::ifstream in(record_path(folder, k));
+    if (!in) continue;
+    nlohmann::json record = nlohmann::json::parse(in, nullptr, false);
+    if (record.is_object()) out.push_back(std::move(record));
+  }
+  return out;
 }
 
 void write_previews(const io::Scene& scene, double fps, FrameRange range, const fs::path& folder) {

@@ -42,11 +42,23 @@ std::vector<FrameRange> block_aligned_ranges(int frame_count, int block, int par
 // The file of frame k: "frame_0007.png" for k = 7 and ext "png".
 std::string frame_file_name(int k, const char* ext);
 
-// Creates `folder` if missing and removes the temporaries that a killed render left for frames
-// first to last - 1 (last < 0: to the end): those frames get rendered again. Temporaries of other
-// ranges are left alone: another process may be rendering them into the same folder right now.
+// Checks, without creating anything, that `folder` is a folder or can be created as one (its
+// nearest existing ancestor is a writable folder). Throws std::runtime_error naming it.
+void check_frame_folder(const std::filesystem::path& folder);
+
+// Creates `folder` (and its .stats/ subfolder) if missing and removes the temporaries that a
+// killed render left: those of frames first to last - 1 (last < 0: to the end), which get
+// rendered again, and any other of ours whose process is gone (previews, stats). Temporaries of
+// other ranges whose process still runs are left alone: it may be rendering into this folder.
 // Throws std::runtime_error naming the folder when it cannot be created.
 void prepare_frame_folder(const std::filesystem::path& folder, int first, int last);
+
+// The peak memory of rendering `parallel` frames of width x height at once, estimated before
+// any work: kRenderBaseBytes for the process and the scene, kRenderBytesPerPixel per pixel of
+// each frame in flight (measured: docs/robustness.md).
+constexpr double kRenderBaseBytes = 256.0 * (1 << 20);
+constexpr double kRenderBytesPerPixel = 128;
+double render_peak_bytes(int width, int height, int parallel);
 
 // Which frames to write and which warm-start blocks to solve for them.
 struct RangePlan {
@@ -68,11 +80,17 @@ struct FrameFiles {
 };
 
 // Renders the planned frames into files.folder, blocks in parallel (TBB). `written(count)` is
-// called after each frame written, one call at a time (for a progress bar). Returns the stats of
-// the frames written (render_stats.hpp), in frame order.
+// called after each frame written, one call at a time (for a progress bar). Each frame's stats
+// record (render_stats.hpp) is kept on disk beside it (.stats/frame_NNNN.json), so a resumed run
+// still reports every frame. Returns the records of the frames written, in frame order.
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
                                          const RangePlan& plan, const FrameFiles& files,
                                          const std::function<void(int count)>& written);
+
+// The records of every frame of `range` in `folder`: those of `written` (this run), else those
+// kept on disk by earlier runs; frames with neither are left out. In frame order.
+std::vector<nlohmann::json> range_records(const std::filesystem::path& folder, FrameRange range,
+                                          const std::vector<nlohmann::json>& written);
 
 // The preview video (when the scene asks for one, at `fps`) and the contact sheet of every frame
 // of `range` in `folder`, those rendered by earlier runs (or other machines) included.

@@ -52,9 +52,10 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
 
 nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
                          int frames_in_animation, FrameRange range,
-                         const std::vector<nlohmann::json>& written, const RunTimes& ms) {
+                         const std::vector<nlohmann::json>& records, int rendered,
+                         const RunTimes& ms) {
   std::map<std::string, std::vector<double>> stage;
-  for (const nlohmann::json& f : written)
+  for (const nlohmann::json& f : records)
     for (const auto& [name, t] : f["ms"].items()) stage[name].push_back(t.get<double>());
   nlohmann::json medians, totals;
   for (const auto& [name, v] : stage) {
@@ -63,12 +64,11 @@ nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
     for (double x : v) sum += x;
     totals[name] = sum;
   }
-  const int count = int(written.size());
   return {{"scene", scene_file},
           {"frames_in_animation", frames_in_animation},
           {"range", {range.first, range.last}},
-          {"rendered", written.size()},
-          {"skipped", range.size() - count},
+          {"rendered", rendered},
+          {"skipped", range.size() - rendered},
           {"width", scene.camera.width},
           {"height", scene.camera.height},
           {"ms",
@@ -76,10 +76,10 @@ nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
             {"frames", ms.frames},
             {"video_and_contact_sheet", ms.video_and_contact_sheet},
             {"total", ms.total}}},
-          {"frames_per_second", ms.frames > 0 ? written.size() * 1000.0 / ms.frames : 0.0},
+          {"frames_per_second", ms.frames > 0 ? rendered * 1000.0 / ms.frames : 0.0},
           {"stage_ms_median", medians},
           {"stage_ms_total", totals},
-          {"frames", written}};
+          {"frames", records}};
 }
 
 nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::string& scene_file,
@@ -109,7 +109,8 @@ nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::st
   for (auto& [k, f] : by_frame) written.push_back(std::move(f));
   ms.video_and_contact_sheet = previews_ms;
   ms.total += previews_ms;
-  nlohmann::json merged = run_stats(scene_file, scene, frames_in_animation, range, written, ms);
+  nlohmann::json merged =
+      run_stats(scene_file, scene, frames_in_animation, range, written, int(written.size()), ms);
   merged["runs"] = listed;
   return merged;
 }

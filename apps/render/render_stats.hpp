@@ -27,11 +27,13 @@ struct RunTimes {
   double total = 0;
 };
 
-// The whole of stats.json. `scene`: as rendered (camera size overridden); `written`: the frame
-// records (frame_stats) in frame order.
+// The whole of stats.json. `scene`: as rendered (camera size overridden); `records`: every frame
+// record of the range (frame_stats) in frame order, those of earlier runs included; `rendered`:
+// how many of them this run wrote.
 nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
                          int frames_in_animation, FrameRange range,
-                         const std::vector<nlohmann::json>& written, const RunTimes& ms);
+                         const std::vector<nlohmann::json>& records, int rendered,
+                         const RunTimes& ms);
 
 // One run's stats.json, read back for merging, and the file it came from.
 struct RunStatsFile {

@@ -1,6 +1,7 @@
 // load_sim_setup: turns a scene into the simulator's input, reading the files it names (head
 // mesh, strand file); body_params and projector_options: what the renderer draws and projects.
 // See scene_setup.hpp.
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,20 @@
 #include "sim/hair_model.hpp"
 
 namespace wisp::render {
+namespace {
+
+// Every point within sim::kMaxWorldMetres of the head, else an error naming the fields that put
+// it there: huge coordinates scaled up stay finite here but overflow in the simulation.
+void check_reach(const Eigen::Vector3d& p, const std::string& what, const std::string& fields) {
+  if (p.allFinite() && p.norm() <= sim::kMaxWorldMetres) return;
+  char where[64];
+  std::snprintf(where, sizeof where, "%.3g", p.norm());
+  throw std::invalid_argument(fields + ": " + what + " lies " + where +
+                              " m from the head (at most " +
+                              std::to_string(int(sim::kMaxWorldMetres)) + " m)");
+}
+
+}  // namespace
 
 sim::SimSetup load_sim_setup(const io::Scene& scene) {
   const std::string file = scene.path.string();
@@ -22,11 +37,19 @@ sim::SimSetup load_sim_setup(const io::Scene& scene) {
     } catch (const std::exception& e) {
       throw std::runtime_error(file + ": head.mesh: " + e.what());
     }
-    for (auto& v : mesh.vertices) v = v * scene.head.mesh_scale + scene.head.mesh_offset;
   }
   try {
-    if (scene.hair.source == sim::HairSource::Procedural)
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      Eigen::Vector3d& v = mesh.vertices[i];
+      v = v * scene.head.mesh_scale + scene.head.mesh_offset;
+      check_reach(v, "vertex " + std::to_string(i + 1) + " of " + scene.head.mesh.string(),
+                  "head.mesh_scale");
+    }
+    if (scene.hair.source == sim::HairSource::Procedural) {
+      sim::check_budget(double(scene.hair.count) * (scene.hair.segments + 1), scene.motion,
+                        scene.sim);
       return sim::make_setup(scene.head, scene.hair, scene.motion, scene.sim, mesh);
+    }
 
     sim::SimSetup setup = sim::make_base_setup(scene.head, scene.motion, scene.sim, mesh);
     std::vector<sim::Polyline> strands;
@@ -40,19 +63,25 @@ sim::SimSetup load_sim_setup(const io::Scene& scene) {
     // File coordinates to head-local metres; strands of a single point are dropped.
     const sim::HairParams& h = scene.hair;
     std::vector<sim::Polyline> usable;
-    for (auto& s : strands) {
+    for (std::size_t i = 0; i < strands.size(); ++i) {
+      sim::Polyline& s = strands[i];
       if (s.size() < 2) continue;
       for (auto& p : s) {
         p *= h.file_scale;
         if (h.file_z_up) p = Eigen::Vector3d(p.x(), p.z(), -p.y());
         p += h.file_offset;
+        check_reach(p, "strand " + std::to_string(i) + " of " + h.file.string(), "hair.file_scale");
       }
       usable.push_back(std::move(s));
     }
     if (usable.empty())
       throw std::runtime_error("hair.file: " + h.file.string() + " has no strand with 2 points");
+    const std::vector<int> guides = sim::select_guides(usable, h.count);
+    double samples = 0;
+    for (int i : guides) samples += h.segments > 0 ? h.segments + 1 : double(usable[i].size());
+    sim::check_budget(samples, scene.motion, scene.sim);
     const sim::HeadShape head(setup.head);
-    for (int i : sim::select_guides(usable, h.count)) {
+    for (int i : guides) {
       sim::Polyline guide = h.segments > 0 ? sim::resample(usable[i], h.segments) : usable[i];
       sim::clear_head(guide, head, scene.sim.collision_margin + 0.002);
       setup.rest.push_back(std::move(guide));

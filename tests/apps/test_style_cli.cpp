@@ -273,13 +273,13 @@ TEST_CASE("bad style fields are refused with one line naming the field", "[cli][
   } cases[] = {
       {{{"shading", {{"ramp", "nothere.png"}}}}, "style.shading.ramp: " + dir + "/nothere.png"},
       {{{"shading", {{"ramp", "empty.png"}}}}, "style.shading.ramp: " + dir + "/empty.png"},
-      {{{"shading", {{"ramp", "text.png"}}}}, "0 pixels"},
+      {{{"shading", {{"ramp", "text.png"}}}}, "not a PNG image"},
       {{{"ink", {{"silhouette_width", -2}}}}, "style.ink.silhouette_width: must be a width"},
       {{{"ink", {{"occlusion_width", -0.5}}}}, "style.ink.occlusion_width"},
       {{{"preset", "tooon"}},
        "style.preset: expected one of anime, faraj, soft, toon or a .json file, got \"tooon\" (did "
        "you mean \"toon\"?)"},
-      {{{"preset", "mine.json"}}, "mine.json: cannot open the preset file"},
+      {{{"preset", "mine.json"}}, "mine.json: cannot open the style preset file"},
       {{{"ink", {{"widht", 2}}}}, "style.ink.widht: unknown field"},
       {{{"highlights", {{"shape", "zigzag"}}}},
        "style.highlights.shape: expected one of none, band, anime"},

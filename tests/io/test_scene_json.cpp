@@ -134,11 +134,11 @@ TEST_CASE("range errors are the stage's validate() messages behind the file and 
           "[io][scene]") {
   CHECK(error_of({{"sim", {{"fps", 0}}}}) == "scene.json: sim.fps: must be in (0, 1000]");
   CHECK(error_of({{"sim", {{"wind", {{"gust_frequency", -1}}}}}}) ==
-        "scene.json: sim.wind.gust_frequency: must be >= 0 (Hz)");
+        "scene.json: sim.wind.gust_frequency: must be in [0, 1000] Hz");
   CHECK(error_of({{"hair", {{"source", "json"}, {"file", "s.json"}, {"count", -1}}}}) ==
         "scene.json: hair.count: must be >= 0 (0 = all strands), got -1");
   CHECK(error_of({{"head", {{"radii", {0.1, 0, 0.1}}}}}) ==
-        "scene.json: head.radii: every radius must be positive");
+        "scene.json: head.radii: every radius must be in (0, 10] m");
   CHECK(error_of({{"motion", {{"preset", "keys"}}}}) ==
         "scene.json: motion.keys: preset \"keys\" needs at least one keyframe");
   CHECK(error_of({{"camera", {{"target", {0, 0, 1.1}}}}}) ==
@@ -304,7 +304,7 @@ TEST_CASE("bad style, light and render values name the field", "[io][scene]") {
   CHECK(error_of({{"style", {{"highlight_along", 2}}}}).find("style.highlight_along") !=
         std::string::npos);
   CHECK(error_of({{"light", {{"direction", {0, 0, 0}}}}}) ==
-        "scene.json: light.direction: must be a non-zero vector");
+        "scene.json: light.direction: must be a non-zero vector with components in [-1e6, 1e6]");
   CHECK(error_of({{"light", {{"directoin", {0, 0, 1}}}}}) ==
         "scene.json: light.directoin: unknown field (did you mean \"direction\"?)");
   CHECK(error_of({{"render", {{"video", 1}}}}) ==

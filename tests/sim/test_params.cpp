@@ -81,7 +81,7 @@ TEST_CASE("defaults are valid and validate() names the first bad field", "[sim][
   hair.file = "strands.json";
   CHECK(invalid(hair).empty());  // a file keeps all its strands with count 0
   hair.length = std::nan("");
-  CHECK(invalid(hair) == "length: must be a positive length in metres");
+  CHECK(invalid(hair) == "length: must be in (0, 10] m");
   MotionParams motion;
   motion.preset = MotionPreset::Keys;
   CHECK(invalid(motion) == "keys: preset \"keys\" needs at least one keyframe");
@@ -92,7 +92,7 @@ TEST_CASE("defaults are valid and validate() names the first bad field", "[sim][
   CHECK(invalid(sim) == "step_rate: must be in [sim.fps, 100000] Hz");
   sim = SimParams{};
   sim.wind.gust = -1;
-  CHECK(invalid(sim) == "wind.gust: must be >= 0 (m/s)");
+  CHECK(invalid(sim) == "wind.gust: must be in [0, 1000] m/s");
   CameraParams camera;
   camera.up = camera.target - camera.eye;
   CHECK(invalid(camera) == "up: must not be parallel to the view");

@@ -1,0 +1,14 @@
+// Fuzz target: a SceneXML drawing (io/drawing_xml.cpp; the seeds are SceneXML, the
+// mutations may cross dialects), rendered at 24x24.
+#include "diffusion/render.hpp"
+#include "io/drawing_xml.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto path = wisp::fuzz::write_input("drawing.xml", data, size);
+  wisp::fuzz::expect_clean([&] {
+    const wisp::io::DrawingFile file = wisp::io::read_drawing_xml(path);
+    wisp::diffusion::SolverOptions solver;
+    wisp::diffusion::render_drawing(file.drawing, 24, 24, solver, nullptr, true);
+  });
+  return 0;
+}
