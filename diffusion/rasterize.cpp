@@ -17,7 +17,8 @@
 namespace wisp::diffusion {
 namespace {
 
-// The Dirichlet side of a curve faces a pixel across one of its links.
+// A side of a curve faces a pixel across one of its links (Dirichlet sides; Neumann sides too
+// when they are opaque).
 struct Claim {
   std::uint64_t slot;  // pixel index * 4 + direction of the link (0 east, 1 west, 2 south, 3 north)
   double t;            // curve parameter at the crossing
@@ -29,6 +30,7 @@ struct Rasterizer {
   const std::vector<DiffusionCurve>& curves;
   Problem& problem;
   const MeshRaster* meshes;
+  NeumannSides neumann_sides;
   std::vector<Claim> claims;
   std::vector<float> wx, wy;  // gradient field of gradient curves (allocated on demand)
 
@@ -43,7 +45,8 @@ struct Rasterizer {
              float distance) {
     const DiffusionCurve& c = curves[k];
     if (!inside(x, y)) return;
-    if ((side_is_left ? c.left_boundary : c.right_boundary) != Boundary::Dirichlet) return;
+    const Boundary b = side_is_left ? c.left_boundary : c.right_boundary;
+    if (b == Boundary::Neumann && neumann_sides == NeumannSides::Transparent) return;
     claims.push_back(
         {problem.index(x, y) * 4 + std::uint64_t(direction), t, distance, 2 * k + side_is_left});
   }
@@ -118,6 +121,11 @@ struct Rasterizer {
     }
   }
 
+  bool is_neumann(const Claim& c) const {
+    const DiffusionCurve& curve = curves[c.side / 2];
+    return (c.side & 1 ? curve.left_boundary : curve.right_boundary) == Boundary::Neumann;
+  }
+
   // The colour (and blur) of the side that makes the claim, at its crossing.
   std::array<double, 4> value(const Claim& c) const {
     const DiffusionCurve& curve = curves[c.side / 2];
@@ -180,16 +188,20 @@ struct Rasterizer {
     set_value(pixel, value(c));
   }
 
-  // First order: a pixel is fixed to its nearest claim.
+  // First order: a pixel is fixed to its nearest claim, unless that is a Neumann side.
   void fix_nearest() {
-    for_each_pixel([&](size_t pixel, size_t first, size_t) { fix(pixel, claims[first]); });
+    for_each_pixel([&](size_t pixel, size_t first, size_t) {
+      if (!is_neumann(claims[first])) fix(pixel, claims[first]);
+    });
   }
 
   // Second order: the nearest claim on each of a pixel's links is an anchor at distance theta,
-  // weighing 1/theta (problem.hpp). A claim almost at the centre fixes the pixel instead.
+  // weighing 1/theta (problem.hpp), unless it is a Neumann side. A Dirichlet claim almost at the
+  // centre fixes the pixel instead.
   void anchor() {
     for_each_pixel([&](size_t pixel, size_t first, size_t last) {
-      if (claims[first].distance < kMinAnchorDistance) return fix(pixel, claims[first]);
+      if (claims[first].distance < kMinAnchorDistance && !is_neumann(claims[first]))
+        return fix(pixel, claims[first]);
       double weight = 0;
       std::array<double, 4> sum{};
       bool seen[4] = {false, false, false, false};
@@ -197,6 +209,7 @@ struct Rasterizer {
         const int direction = int(claims[k].slot % 4);
         if (seen[direction]) continue;  // a farther claim on the same link: hidden
         seen[direction] = true;
+        if (is_neumann(claims[k])) continue;  // the link's nearest side imposes no colour
         const double w = 1.0 / claims[k].distance;
         const std::array<double, 4> v = value(claims[k]);
         weight += w;
@@ -205,6 +218,7 @@ struct Rasterizer {
             curves[claims[k].side / 2].mesh_outline == meshes->owner[pixel])
           mesh_anchor(pixel, w, v);
       }
+      if (weight == 0) return;  // every link's nearest side was Neumann: the pixel stays free
       problem.anchor_weight[pixel] = float(weight);
       for (double& v : sum) v /= weight;
       set_value(pixel, sum);
@@ -220,7 +234,7 @@ Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int heig
   if (meshes && (meshes->width != width || meshes->height != height))
     throw std::invalid_argument("rasterize: the mesh coverage does not match the image size");
   if (meshes) problem.rhs.assign(problem.pixel_count() * problem.channels, 0.0f);
-  Rasterizer r{curves, problem, meshes, {}, {}, {}};
+  Rasterizer r{curves, problem, meshes, options.neumann, {}, {}, {}};
   for (std::uint32_t k = 0; k < curves.size(); ++k) {
     const std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
     for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);

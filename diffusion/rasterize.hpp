@@ -7,9 +7,15 @@
 //    into the other, however thin the feature (a closed curve that crosses the grid separates
 //    its inside from its outside in the link graph, by the Jordan curve theorem).
 //  - Each of the link's two pixels receives a claim from the side of the curve that faces it,
-//    at distance theta = |pixel centre - crossing| along the link, in link lengths. Neumann sides
-//    claim nothing: they only cut. On each link only the nearest claim counts (ties: the first
-//    curve in drawing order); a Neumann side never hides a Dirichlet claim behind it.
+//    at distance theta = |pixel centre - crossing| along the link, in link lengths. On each link
+//    only the nearest claim counts (ties: the first curve in drawing order). Neumann sides impose
+//    no colour; whether they claim at all is NeumannSides:
+//     - Transparent (the default; hair frames): a Neumann side claims nothing, it only cuts, so
+//       it never hides a Dirichlet colour behind it on the same link.
+//     - Opaque (drawings; small-usvg's rule): a Neumann side claims like a Dirichlet one, and a
+//       link whose nearest claim is Neumann anchors nothing. Around a feature thinner than a
+//       link whose outer sides are Neumann (crane's feathers and legs), the pixels outside then
+//       stay free instead of taking the inside colour of the far side.
 //  - Second order (DirichletSampling::ShortleyWeller, the default): a pixel with claims stays an
 //    unknown. Each link's claim acts as a neighbour at distance theta holding the side's colour
 //    c (the ghost point of Shortley and Weller, 1938), so the pixel's equation gains
@@ -18,7 +24,8 @@
 //    straight edge between parallel curves gives the exact linear profile. A claim closer than
 //    kMinAnchorDistance fixes the pixel to its colour instead, so that weights stay bounded.
 //  - First order (DirichletSampling::NearestClaim, for comparison): a pixel is fixed to the
-//    colour of its nearest claim over all its links. The boundary moves by up to a pixel.
+//    colour of its nearest claim over all its links (left free if that claim is Neumann). The
+//    boundary moves by up to a pixel.
 //  - A crossing whose second pixel lies outside the image still claims the inside pixel.
 //  - Thin features: where two curves (or the two sides of a thin wisp) cross the same link,
 //    each pixel takes the claim nearest to it, so it always gets the colour of the side that
@@ -43,6 +50,7 @@
 namespace wisp::diffusion {
 
 enum class DirichletSampling { ShortleyWeller, NearestClaim };  // see the sampling rule above
+enum class NeumannSides { Transparent, Opaque };                // likewise
 
 // Claims nearer to a pixel centre than this (link lengths) fix the pixel: the boundary moves by
 // less than it, and anchor weights stay below its inverse, so the operator stays well scaled.
@@ -52,6 +60,7 @@ struct RasterizeOptions {
   double flatten_tolerance = 0.01;  // pixels: how far the flattened polyline may stray
   bool blur_channel = false;        // add each claim's blur sigma as a 4th channel (anchored too)
   DirichletSampling dirichlet = DirichletSampling::ShortleyWeller;
+  NeumannSides neumann = NeumannSides::Transparent;
 };
 
 // Curves must be valid (see validate()) and in pixel coordinates of a width x height image.

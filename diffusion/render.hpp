@@ -29,9 +29,10 @@ struct Image {
 };
 
 // Curves in drawing coordinates ([0,drawing.width]x[0,drawing.height]) are scaled to a
-// width x height image. With `antialias`, pixels that sharp curves cross mix both sides' colours
-// by the area each covers (antialias.hpp), before the reblur. Throws std::invalid_argument for an
-// invalid curve or size.
+// width x height image. Neumann sides are opaque (NeumannSides::Opaque in rasterize.hpp), as in
+// small-usvg, which reads both XML dialects with that rule. With `antialias`, pixels that sharp
+// curves cross mix both sides' colours by the area each covers (antialias.hpp), before the reblur.
+// Throws std::invalid_argument for an invalid curve or size.
 Image render_drawing(const Drawing& drawing, int width, int height,
                      const SolverOptions& solver = {}, RenderStats* stats = nullptr,
                      bool antialias = true);

@@ -1,6 +1,7 @@
 // Rasterizer: every pixel next to a curve is anchored to (or, in the first-order mode, fixed to)
 // the colour of the side it lies on, crossed links are cut so that no colour leaks through a
-// curve, Neumann sides constrain nothing; the anchors make a second-order boundary.
+// curve, Neumann sides constrain nothing (and, when opaque, hide what lies behind them on a link);
+// the anchors make a second-order boundary.
 #include <catch2/catch.hpp>
 #include <queue>
 
@@ -220,13 +221,44 @@ TEST_CASE("a wisp thinner than a pixel leaks no inside colour", "[rasterize]") {
 TEST_CASE("Neumann sides constrain nothing but still cut", "[rasterize]") {
   auto c = circle(32, 32, 10, Color(1, 0, 0), Color(0, 0, 1));
   c.right_boundary = Boundary::Neumann;
-  const Problem p = rasterize({c}, 64, 64, sampling(either_rule()));
+  RasterizeOptions options = sampling(either_rule());
+  options.neumann = GENERATE(NeumannSides::Transparent, NeumannSides::Opaque);
+  const Problem p = rasterize({c}, 64, 64, options);
+  int inside = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
-      if (constrained(p, p.index(x, y))) CHECK(std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 10);
+      if (constrained(p, p.index(x, y))) {
+        CHECK(std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 10);
+        ++inside;
+      }
+  CHECK(inside > 40);  // the ring of pixels just inside
   const auto outside = flood(p, 0, 0);
   CHECK(!outside[p.index(32, 32)]);
   for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!(outside[i] && constrained(p, i)));
+}
+
+TEST_CASE("an opaque Neumann side hides the Dirichlet colour behind it on the same link",
+          "[rasterize]") {
+  // A lens 0.15-0.3 pixels thick between two rows of pixel centres, black inside, Neumann
+  // outside: every link across it meets the outer side first, then the inner side facing the
+  // same pixel (crane's thin feathers and legs).
+  DiffusionCurve w;
+  w.points = {{5, 20.75}, {20, 20.6}, {40, 20.6}, {55, 20.75}, {40, 20.9}, {20, 20.9}, {5, 20.75}};
+  w.left = {{0, Color(0, 0, 0)}};  // inside
+  w.right_boundary = Boundary::Neumann;
+  RasterizeOptions options = sampling(either_rule());
+  SECTION("opaque (drawings, small-usvg): the outer side is nearest, so no pixel takes black") {
+    options.neumann = NeumannSides::Opaque;
+    const Problem p = rasterize({w}, 60, 40, options);
+    for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!constrained(p, i));
+    CHECK(!(p.links[p.index(30, 20)] & kOpenSouth));  // and the lens still cuts
+  }
+  SECTION("transparent (hair): the inner side's black reaches the pixels on both sides") {
+    const Problem p = rasterize({w}, 60, 40, options);
+    int black = 0;
+    for (size_t i = 0; i < p.pixel_count(); ++i) black += constrained(p, i);
+    CHECK(black >= 90);
+  }
 }
 
 TEST_CASE("only the active parameter intervals constrain", "[rasterize]") {

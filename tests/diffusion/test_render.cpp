@@ -71,3 +71,61 @@ TEST_CASE("drawing coordinates scale to the output size", "[render]") {
   CHECK(small.planes[16 * 32 + 16] == Approx(0.0f).margin(1e-4));
   CHECK_THROWS_AS(render_drawing(Drawing{}, 32, 32), std::invalid_argument);
 }
+
+TEST_CASE("a thin feature with Neumann outer sides leaves the colour around it undisturbed",
+          "[render]") {
+  // Crane's legs and feathers: two open curves from one tip to the other, black between them,
+  // Neumann outside, 0 to 2 pixels thick and tapering below a pixel at both ends, in a grey
+  // field (two grey lines at the sides). small-usvg lets each pixel's nearest side decide, so
+  // outside pixels never see the black of the far side and the grey is undisturbed; with
+  // transparent Neumann sides the black would leak out around the tapering ends.
+  DiffusionCurve upper, lower;
+  upper.points = {{8, 31.2}, {20, 29.8}, {44, 29.8}, {56, 31.2}};
+  upper.left = {{0, Color(0, 0, 0)}};  // below it (left of travel in +x, y down): the inside
+  upper.right_boundary = Boundary::Neumann;
+  lower.points = {{8, 31.2}, {20, 32.4}, {44, 32.4}, {56, 31.2}};
+  lower.right = {{0, Color(0, 0, 0)}};  // above it: the inside
+  lower.left_boundary = Boundary::Neumann;
+  const auto grey_line = [](double x) {
+    DiffusionCurve c;
+    c.points = {{x, -1}, {x, 20}, {x, 44}, {x, 65}};
+    c.left = c.right = {{0, Color(0.5f, 0.5f, 0.5f)}};
+    return c;
+  };
+  Drawing d;
+  d.width = d.height = 64;
+  d.curves = {grey_line(2), upper, lower, grey_line(62)};
+  const Image im = render_drawing(d, 64, 64);
+  const size_t n = size_t(64) * 64;
+  int checked = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      if (x < 3 || x > 60 || std::abs(y + 0.5 - 31) < 3) continue;  // off the lines and feature
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(im.planes[c * n + y * 64 + x] - 0.5f) < 2e-3f);
+      ++checked;
+    }
+  CHECK(checked > 2500);
+  // The inside still is black.
+  CHECK(im.planes[31 * 64 + 32] < 1e-3f);
+}
+
+TEST_CASE("an open curve inside a closed loop constrains with both its colours", "[render]") {
+  // small-usvg's partition prunes a dangling edge only from the turning number of its loop; the
+  // edge stays a boundary curve with both sides, so the curve is not dropped.
+  DiffusionCurve ring;
+  ring.points = {{4, 32}, {4, 4}, {60, 4}, {60, 32}, {60, 60}, {4, 60}, {4, 32}};
+  ring.left = ring.right = {{0, Color(0.5f, 0.5f, 0.5f)}};
+  DiffusionCurve open;
+  open.points = {{32, 16}, {32, 26}, {32, 38}, {32, 48}};  // downwards: left is -x
+  open.left = {{0, Color(1, 0, 0)}};
+  open.right = {{0, Color(0, 0, 1)}};
+  Drawing d;
+  d.width = d.height = 64;
+  d.curves = {ring, open};
+  const Image im = render_drawing(d, 64, 64);
+  const size_t n = size_t(64) * 64, at_left = 32 * 64 + 31, at_right = 32 * 64 + 32;
+  CHECK(im.planes[at_left] > 0.9f);  // red just left of it
+  CHECK(im.planes[2 * n + at_left] < 0.1f);
+  CHECK(im.planes[2 * n + at_right] > 0.9f);  // blue just right of it
+  CHECK(im.planes[at_right] < 0.1f);
+}
