@@ -5,7 +5,8 @@
 // (a third each straight, wavy and curly, as in the tests). The exact run happens in a forked
 // child with a time limit, because the Bezier traits can take minutes or crash.
 //
-// Arguments: [--exact-timeout SECONDS] (default 60; 0 skips the exact traits) [--repeats N].
+// Arguments: [--exact-timeout SECONDS] (default 60; 0 skips the exact traits) [--repeats N]
+// [--scene plain|mixed] (default both) [--wisps N] (one size instead of 50..1000).
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -122,9 +123,13 @@ std::string exact_in_child(const std::vector<vector::Wisp>& wisps, double timeou
 int run_arrangement(const std::vector<std::string>& args) {
   double exact_timeout = 60;
   int repeats = 5;
+  std::vector<int> sizes = {50, 100, 200, 400, 1000};
+  std::vector<int> scenes = {0, 1};  // plain, mixed
   for (size_t i = 0; i + 1 < args.size(); i += 2) {
     if (args[i] == "--exact-timeout") exact_timeout = std::stod(args[i + 1]);
     if (args[i] == "--repeats") repeats = std::max(1, std::stoi(args[i + 1]));
+    if (args[i] == "--wisps") sizes = {std::max(1, std::stoi(args[i + 1]))};
+    if (args[i] == "--scene") scenes = {args[i + 1] == "mixed" ? 1 : 0};
   }
   vector::WispStyle style;
   style.width = 0.03;
@@ -135,8 +140,8 @@ int run_arrangement(const std::vector<std::string>& args) {
   std::printf("  \"flatten_tolerance_px\": %g,\n  \"fit_tolerance_px\": %g,\n  \"repeats\": %d,\n",
               style.flatten_tolerance_px, style.fit_tolerance_px, repeats);
   std::printf("  \"scenes\": [\n");
-  const std::vector<int> sizes = {50, 100, 200, 400, 1000};
-  for (int mixed = 0; mixed < 2; ++mixed) {
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const int mixed = scenes[k];
     std::printf("    {\"scene\": \"%s\", \"sizes\": [\n", mixed ? "mixed" : "plain");
     bool exact_gave_up = exact_timeout <= 0;
     for (size_t s = 0; s < sizes.size(); ++s) {
@@ -186,7 +191,7 @@ int run_arrangement(const std::vector<std::string>& args) {
           1000 * ms / arr.stats.segments, exact.c_str(), s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
-    std::printf("    ]}%s\n", mixed ? "" : ",");
+    std::printf("    ]}%s\n", k + 1 < scenes.size() ? "," : "");
   }
   std::printf("  ]\n}\n");
   return 0;

@@ -70,6 +70,9 @@ struct Resolver {
   std::vector<int> front;
   std::vector<double> front_depth;
   std::vector<char> visible;  // per entry of map.sources
+  // Buffers of interior_point, kept across faces to spare an allocation per face.
+  mutable std::vector<std::pair<Vector2d, Vector2d>> scratch_edges;
+  mutable std::vector<double> scratch_xs;
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
@@ -130,7 +133,8 @@ struct Resolver {
   // An interior point: the middle of the widest span cut from the face by one of three
   // horizontal lines (even-odd over all its boundaries, so holes are avoided).
   Vector2d interior_point(int f) const {
-    std::vector<std::pair<Vector2d, Vector2d>> edges;
+    std::vector<std::pair<Vector2d, Vector2d>>& edges = scratch_edges;
+    edges.clear();
     double y0 = INFINITY, y1 = -INFINITY;
     for_each_ccb(f, [&](int h0) {
       int h = h0;
@@ -143,7 +147,7 @@ struct Resolver {
     });
     Vector2d best = 0.5 * (edges[0].first + edges[0].second);
     double best_width = 0;
-    std::vector<double> xs;
+    std::vector<double>& xs = scratch_xs;
     for (double frac : {0.5, 0.25, 0.75}) {
       const double y = y0 + frac * (y1 - y0);
       xs.clear();
@@ -283,14 +287,18 @@ struct Resolver {
     return best;
   }
 
-  std::vector<int> edge_wisps(int e) const {
-    std::vector<int> w;
-    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
-      w.push_back(segments[map.sources[i].segment].wisp);
-    std::sort(w.begin(), w.end());
-    w.erase(std::unique(w.begin(), w.end()), w.end());
-    return w;
+  // Whether every source wisp of edge e is one of edge g's (sources are few: no allocation).
+  bool wisps_within(int e, int g) const {
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+      const int w = segments[map.sources[i].segment].wisp;
+      bool found = false;
+      for (int j = map.source_begin[g]; j < map.source_begin[g + 1] && !found; ++j)
+        found = segments[map.sources[j].segment].wisp == w;
+      if (!found) return false;
+    }
+    return true;
   }
+  bool same_wisps(int e, int g) const { return wisps_within(e, g) && wisps_within(g, e); }
 
   // Vertices where outlines cross or touch: not a joint of exactly two edges of the same
   // source wisps.
@@ -303,7 +311,7 @@ struct Resolver {
         ++degree[v];
         if (first_edge[v] < 0)
           first_edge[v] = e;
-        else if (edge_wisps(e) != edge_wisps(first_edge[v]))
+        else if (!same_wisps(e, first_edge[v]))
           flag[v] = 1;
       }
     }

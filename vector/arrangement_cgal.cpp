@@ -14,6 +14,18 @@ bool left_to_right(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
 }
 
+// CGAL::to_double(p.x()) without building a lazy x() node: the same rule as Lazy_exact_nt's
+// To_double (the interval's value when it is precise to 1e-5, else the exact value rounded).
+double to_double(const cgal::Point& p, int axis) {
+  const CGAL::Interval_nt<false> approx = axis == 0 ? p.approx().x() : p.approx().y();
+  double r;
+  if (CGAL::fit_in_double(approx, r)) return r;
+  if (CGAL::has_smaller_relative_precision(approx,
+                                           cgal::Kernel::FT::get_relative_precision_of_to_double()))
+    return CGAL::to_double(approx);
+  return CGAL::to_double(axis == 0 ? p.x() : p.y());
+}
+
 }  // namespace
 
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments) {
@@ -33,7 +45,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments) {
   int index = 0;
   for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
     v->set_data(index++);
-    map.vertices.emplace_back(CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y()));
+    map.vertices.emplace_back(to_double(v->point(), 0), to_double(v->point(), 1));
   }
   index = 0;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) f->set_data(index++);
