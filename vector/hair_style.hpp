@@ -88,7 +88,7 @@ struct InkStyle {
   // blobs of ink.
   double tip_fade = 0.15;
   double tip_width = 0.35;
-  double end_taper = 6;         // px (reference): occlusion strokes taper to 0 at their open ends
+  double end_taper = 6;  // px (reference): occlusion strokes taper to 0 at their open ends
   // px (final image): Bezier fit of the polylines. At 0.15 px the 1:1 error of the toon and anime
   // presets at 512^2 was 2-3/255 higher at the 99th percentile (an ink edge off by a tenth of a
   // pixel against skin is 20/255); the strokes cost a few milliseconds either way.
