@@ -159,6 +159,16 @@ TEST_CASE("a killed render resumes to the same files as an uninterrupted one", "
   std::ofstream(part + "/.frame_0005.partial-999999.png") << "half a frame";
   render(part, "--frames 0:12");
   CHECK(!fs::exists(part + "/.frame_0005.partial-999999.png"));
+  // The resumed run's stats.json still holds every frame's record, those of the first run too.
+  std::ifstream in(part + "/stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  CHECK(stats["rendered"] == 7);
+  CHECK(stats["skipped"] == 5);
+  REQUIRE(stats["frames"].size() == 12);
+  for (int k = 0; k < 12; ++k) {
+    CHECK(stats["frames"][k]["frame"] == k);
+    CHECK(stats["frames"][k]["ms"]["solve"].get<double>() >= 0);
+  }
   for (int k = 0; k < 12; ++k) {
     INFO("frame " << k);
     CHECK(read_file(frame(whole, k)) == read_file(frame(part, k)));
