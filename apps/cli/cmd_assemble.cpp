@@ -87,8 +87,8 @@ void run_assemble(const AssembleArgs& a) {
   render::write_previews(scene, anim.fps, range, out);
   const double previews_ms = diffusion::ms_since(t_previews);
   const std::vector<render::RunStatsFile> runs = run_stats_files(out / "stats");
-  nlohmann::json stats =
-      render::merged_stats(runs, scene_file, scene, range.size(), range, previews_ms);
+  nlohmann::json stats = render::merged_stats(runs, scene_file, scene, range.size(), range,
+                                              previews_ms, render::range_records(out, range, {}));
   stats["ms"]["assemble"] = diffusion::ms_since(t_start);
   io::write_text_atomically(out / "stats.json", stats.dump(2) + "\n");
   if (!a.quiet)

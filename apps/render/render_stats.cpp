@@ -84,8 +84,12 @@ nlohmann::json run_stats(const std::string& scene_file, const io::Scene& scene,
 
 nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::string& scene_file,
                             io::Scene scene, int frames_in_animation, FrameRange range,
-                            double previews_ms) {
+                            double previews_ms, const std::vector<nlohmann::json>& kept) {
   std::map<int, nlohmann::json> by_frame;
+  for (const nlohmann::json& f : kept) {
+    const int k = f.value("frame", -1);
+    if (k >= range.first && k < range.last) by_frame[k] = f;
+  }
   RunTimes ms;
   nlohmann::json listed = nlohmann::json::array();
   for (const RunStatsFile& run : runs) {

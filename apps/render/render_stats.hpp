@@ -47,8 +47,10 @@ struct RunStatsFile {
 // one's (a resumed task's); the image size is the runs'; "ms.frames" and the stage totals add up
 // the runs' (machine time, not wall time), "ms.video_and_contact_sheet" is `previews_ms`, and
 // "runs" lists each run's file, range, frames rendered and total milliseconds, in the order given.
+// `kept`: the frame records kept beside the frames (render_range.hpp: range_records), for frames
+// whose run wrote no stats.json (a task killed after writing them).
 nlohmann::json merged_stats(const std::vector<RunStatsFile>& runs, const std::string& scene_file,
                             io::Scene scene, int frames_in_animation, FrameRange range,
-                            double previews_ms);
+                            double previews_ms, const std::vector<nlohmann::json>& kept);
 
 }  // namespace wisp::render

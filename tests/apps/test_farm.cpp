@@ -206,4 +206,12 @@ TEST_CASE("wisp assemble merges ranges rendered by hand into one folder", "[farm
   CHECK(stats["runs"].size() == 2);
   CHECK(stats["range"] == nlohmann::json::array({0, 25}));
   for (int k = 0; k < 25; ++k) CHECK(stats["frames"][k]["frame"] == k);
+  // A machine killed before writing its stats file: its frames' records are still beside them.
+  fs::remove(dir + "/stats/12.json");
+  REQUIRE(run_command(kWisp + " assemble " + dir + " --scene " + scene + " -q").exit_code == 0);
+  std::ifstream again(dir + "/stats.json");
+  const auto kept = nlohmann::json::parse(again);
+  CHECK(kept["runs"].size() == 1);
+  REQUIRE(kept["frames"].size() == 25);
+  for (int k = 0; k < 25; ++k) CHECK(kept["frames"][k]["frame"] == k);
 }
