@@ -25,6 +25,14 @@ using diffusion::GradientMesh;
 using diffusion::PoissonCurve;
 using tinyxml2::XMLElement;
 
+// Input text for a message: in quotes, on one line (anything outside printable ASCII shown as
+// '?'), cut after 40 characters.
+std::string quoted(const std::string& value) {
+  std::string q;
+  for (const char c : value.substr(0, 40)) q += c >= ' ' && c <= '~' ? c : '?';
+  return "\"" + q + (value.size() > 40 ? "...\"" : "\"");
+}
+
 class Reader {
  public:
   Reader(std::string name, XmlDialect dialect) : name_(std::move(name)), dialect_(dialect) {}
@@ -39,7 +47,7 @@ class Reader {
     if (!text) fail(e, std::string("missing attribute '") + attr + "'");
     double v = 0;
     if (e->QueryDoubleAttribute(attr, &v) != tinyxml2::XML_SUCCESS || !std::isfinite(v))
-      fail(e, std::string("attribute '") + attr + "' is not a finite number: \"" + text + "\"");
+      fail(e, std::string("attribute '") + attr + "' is not a finite number: " + quoted(text));
     return v;
   }
 
@@ -131,7 +139,7 @@ class Reader {
     const char* b = set->Attribute("boundary");
     if (!b || std::string(b) == "Dirichlet") return Boundary::Dirichlet;
     if (std::string(b) == "Neumann") return Boundary::Neumann;
-    fail(set, std::string("boundary must be \"Dirichlet\" or \"Neumann\", got \"") + b + "\"");
+    fail(set, "boundary must be \"Dirichlet\" or \"Neumann\", got " + quoted(b));
   }
 
   DiffusionCurve curve(const XMLElement* e, int index) const {
@@ -204,7 +212,7 @@ class Reader {
       if (v == "1" || v == "true")
         m.normalized = true;
       else if (v != "0" && v != "false")
-        fail(e, "normalized must be 0, 1, true or false, got \"" + v + "\"");
+        fail(e, "normalized must be 0, 1, true or false, got " + quoted(v));
     }
     const size_t vertices = size_t(m.rows + 1) * size_t(m.cols + 1);
     const auto expect = [&](const XMLElement* at, size_t got, const char* what_set) {
@@ -311,8 +319,8 @@ XmlDialect detect_dialect(const tinyxml2::XMLDocument& doc, const std::string& n
       if (v.find("SceneXML") != std::string::npos) return XmlDialect::SceneXML;
       if (v.find("CurveSetXML") != std::string::npos) return XmlDialect::CurveSetXML;
       throw std::invalid_argument(name + ":" + std::to_string(u->GetLineNum()) +
-                                  ": unknown document type <!" + v +
-                                  ">; expected CurveSetXML or SceneXML");
+                                  ": unknown document type " + quoted("<!" + v + ">") +
+                                  "; expected CurveSetXML or SceneXML");
     }
     if (n->ToElement()) break;
   }

@@ -40,6 +40,11 @@ void check_png(const std::string& b, const std::string& name) {
     if (at + 12 > b.size()) fail("truncated PNG image (no IEND chunk)");
     const std::uint32_t length = big_endian(b, at);
     const std::string type = b.substr(at + 4, 4);
+    // PNG chunk types are four ASCII letters; checked before a message quotes one.
+    for (const char c : type)
+      if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')))
+        fail("corrupt PNG image (chunk " + std::to_string(index) +
+             " has a type that is not letters)");
     if (length > b.size() - at - 12) fail("truncated PNG image (in a " + type + " chunk)");
     if (crc32(b, at + 4, 4 + length) != big_endian(b, at + 8 + length))
       fail("corrupt PNG image (checksum of a " + type + " chunk)");

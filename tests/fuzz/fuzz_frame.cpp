@@ -32,6 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = wisp::fuzz::scratch() / "frame.wsim";
   wisp::io::write_animation(path, anim);
   const auto scene = wisp::fuzz::write_input("scene.json", "{}");
-  wisp::fuzz::expect_clean([&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene), path); });
+  wisp::fuzz::expect_clean(data, size,
+                           [&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene), path); });
   return 0;
 }

@@ -5,6 +5,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   wisp::fuzz::write_input("model.hair", data, size);
   const auto scene = wisp::fuzz::write_input(
       "scene.json", R"({"hair": {"source": "hair", "file": "model.hair", "count": 0}})");
-  wisp::fuzz::expect_clean([&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene)); });
+  wisp::fuzz::expect_clean(data, size,
+                           [&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene)); });
   return 0;
 }

@@ -3,6 +3,7 @@
 #include "tests/fuzz/fuzz_support.hpp"
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = wisp::fuzz::write_input("scene.json", data, size);
-  wisp::fuzz::expect_clean([&] { wisp::fuzz::render_tiny(wisp::io::load_scene(path)); });
+  wisp::fuzz::expect_clean(data, size,
+                           [&] { wisp::fuzz::render_tiny(wisp::io::load_scene(path)); });
   return 0;
 }

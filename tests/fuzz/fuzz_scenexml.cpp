@@ -5,7 +5,7 @@
 #include "tests/fuzz/fuzz_support.hpp"
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = wisp::fuzz::write_input("drawing.xml", data, size);
-  wisp::fuzz::expect_clean([&] {
+  wisp::fuzz::expect_clean(data, size, [&] {
     const wisp::io::DrawingFile file = wisp::io::read_drawing_xml(path);
     wisp::diffusion::SolverOptions solver;
     wisp::diffusion::render_drawing(file.drawing, 24, 24, solver, nullptr, true);

@@ -24,9 +24,11 @@ std::filesystem::path write_input(const std::string& name, const std::uint8_t* d
                                   std::size_t size);
 std::filesystem::path write_input(const std::string& name, const std::string& text);
 
-// Runs `body`; a std::exception is a refusal, which must be one non-empty line with no library
-// internals in it (else the process aborts, which the fuzzer reports as a crash).
-void expect_clean(const std::function<void()>& body);
+// Runs `body` on `input` (the fuzzer's bytes); a std::exception is a refusal, which must be one
+// non-empty line with no library internals in it (else the process aborts, which the fuzzer
+// reports as a crash). A word the input itself contains is the input echoed, not an internal:
+// libFuzzer learns the words from the comparisons here and writes them into its inputs.
+void expect_clean(const std::uint8_t* input, std::size_t size, const std::function<void()>& body);
 
 // The scene of a tiny frame: 24x24 pixels, a few short guides, one frame simulated cheaply.
 // Fields the input gave are kept where they do not make the run bigger.

@@ -4,6 +4,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto anim = wisp::fuzz::write_input("anim.wsim", data, size);
   const auto scene = wisp::fuzz::write_input("scene.json", "{}");
-  wisp::fuzz::expect_clean([&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene), anim); });
+  wisp::fuzz::expect_clean(data, size,
+                           [&] { wisp::fuzz::render_tiny(wisp::io::load_scene(scene), anim); });
   return 0;
 }
