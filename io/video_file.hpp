@@ -18,12 +18,12 @@ namespace wisp::io {
 std::string write_video(const std::filesystem::path& path,
                         const std::vector<std::filesystem::path>& frames, double fps);
 
-// Decodes the whole video and counts its frames; -1 if it cannot be opened.
 // Checks, before any frame is rendered, that a width x height video at `fps` can be written:
 // encodes one blank frame to a temporary file outside the output folder and reads it back.
 // Throws std::runtime_error "<path>: ..." when it cannot (sizes the codecs refuse, bad fps).
 void check_video(const std::filesystem::path& path, int width, int height, double fps);
 
+// Decodes the whole video and counts its frames; -1 if it cannot be opened.
 int count_video_frames(const std::filesystem::path& path);
 
 }  // namespace wisp::io

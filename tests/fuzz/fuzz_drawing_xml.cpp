@@ -1,5 +1,6 @@
-// Fuzz target: a CurveSetXML drawing (io/drawing_xml.cpp; the seeds are CurveSetXML, the
-// mutations may cross dialects), rendered at 24x24.
+// Fuzz targets scenexml and curvesetxml: a drawing in either XML dialect (io/drawing_xml.cpp reads
+// both), rendered at 24x24. The two targets are this one source; they differ in their seed
+// corpora (SceneXML or CurveSetXML), and mutations may cross dialects.
 #include "diffusion/render.hpp"
 #include "io/drawing_xml.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
