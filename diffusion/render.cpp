@@ -66,7 +66,6 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   }
   RasterizeOptions raster;
   raster.blur_channel = any_blur;
-  raster.neumann = NeumannSides::Opaque;  // small-usvg's rule (rasterize.hpp)
   const MeshRaster coverage = rasterize_meshes(meshes, width, height);
   const Problem problem =
       rasterize(curves, width, height, raster, meshes.empty() ? nullptr : &coverage);

@@ -38,7 +38,7 @@ namespace wisp::render {
 struct BodyTones {
   Rgb lit{0.96f, 0.80f, 0.69f}, shadow{0.69f, 0.58f, 0.50f};
   float threshold = 0.45f;  // half-Lambert shade below which the shadow tone shows
-  double tolerance = 0.25;  // px: largest distance of the fitted outlines from the exact ones
+  double tolerance = 0.05;  // px: largest distance of the fitted outlines from the exact ones
   double overlap = 2;       // px: how far the lit fill reaches under the shadow
 };
 

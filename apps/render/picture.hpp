@@ -38,20 +38,18 @@ struct InkStroke {
   Rgb color = Rgb::Zero();
   bool closed = false;
   // The stroke as a Bezier path with its full width as (s, px) stops over the path parameter s,
-  // linear in between. When set, PNG and SVG draw this (see ink_pieces) and `points`/`width` are
+  // linear in between. When set, PNG and SVG draw this and `points`/`width` are
   // its flattening, for tools that want polylines.
   diffusion::BezierPath curve;
   std::vector<std::pair<double, double>> curve_width;
 };
 
-// A variable-width Bezier stroke as constant-width stroked paths, drawn the same way in the PNG
-// (Cairo) and the SVG (one <path> with stroke-width each; rsvg is Cairo, browsers stroke alike):
-// the cubics are split (de Casteljau, exact geometry) wherever the width, rounded to a multiple
-// of `step` px, changes, and consecutive pieces of the same rounded width form one path, stroked
-// with round caps and joins. Widths are thus within step/2 of the exact profile; pieces rounding
-// to 0 are left out. A filled outline of offset curves would follow the width exactly but needs
-// offset approximations that fold on tight bends; stroking keeps every path a real stroke that
-// editors understand.
+// A variable-width Bezier stroke as constant-width stroked paths, as the SVG draws it (one <path>
+// with stroke-width each, an editable stroke): the cubics are split (de Casteljau, exact geometry)
+// wherever the width, rounded to a multiple of `step` px, changes, and consecutive pieces of the
+// same rounded width form one path, stroked with round caps and joins. Widths are thus within
+// step/2 of the exact profile; pieces rounding to 0 are left out. The PNG fills the exact width
+// profile instead (picture_png.cpp): viewers composite the pieces' overlapping caps twice.
 struct InkPiece : diffusion::BezierPath {
   double width = 0;
 };

@@ -9,6 +9,7 @@
 #include "apps/render/picture.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png_encode.hpp"
+#include "vector/ink_strokes.hpp"
 
 namespace wisp::render {
 namespace {
@@ -78,47 +79,58 @@ Surface hair_surface(const diffusion::Image& img) {
   return s;
 }
 
-// A variable-width stroke as a filled outline: segments with per-end widths plus round joins.
-void ink_path(cairo_t* cr, const InkStroke& ink) {
-  const size_t n = ink.points.size();
-  for (size_t i = 0; i + 1 < n + (ink.closed ? 1 : 0); ++i) {
-    const Eigen::Vector2d a = ink.points[i], b = ink.points[(i + 1) % n];
-    const double wa = 0.5 * ink.width[i], wb = 0.5 * ink.width[(i + 1) % n];
-    const Eigen::Vector2d d = b - a;
-    if (d.norm() < 1e-9) continue;
-    const Eigen::Vector2d nrm = Eigen::Vector2d(-d.y(), d.x()).normalized();
-    cairo_move_to(cr, a.x() + nrm.x() * wa, a.y() + nrm.y() * wa);
-    cairo_line_to(cr, b.x() + nrm.x() * wb, b.y() + nrm.y() * wb);
-    cairo_line_to(cr, b.x() - nrm.x() * wb, b.y() - nrm.y() * wb);
-    cairo_line_to(cr, a.x() - nrm.x() * wa, a.y() - nrm.y() * wa);
+// Adds the convex hull of two discs (centres a, b; radii ra, rb) as one closed subpath, turning
+// the same way as every other: a fill of many such subpaths with the winding rule covers exactly
+// their union, each pixel's coverage computed once.
+void disc_hull(cairo_t* cr, const Eigen::Vector2d& a, double ra, const Eigen::Vector2d& b,
+               double rb) {
+  const Eigen::Vector2d d = b - a;
+  const double len = d.norm();
+  cairo_new_sub_path(cr);
+  if (len <= std::abs(ra - rb)) {  // one disc holds the other
+    const Eigen::Vector2d& c = ra >= rb ? a : b;
+    cairo_arc(cr, c.x(), c.y(), std::max(ra, rb), 0, 2 * M_PI);
     cairo_close_path(cr);
+    return;
   }
-  for (size_t i = 0; i < n; ++i) {
-    cairo_new_sub_path(cr);
-    cairo_arc(cr, ink.points[i].x(), ink.points[i].y(), 0.5 * ink.width[i], 0, 2 * M_PI);
-  }
+  // The outer tangents touch both circles at angles theta +- beta from the axis a -> b.
+  const double theta = std::atan2(d.y(), d.x()), beta = std::acos((ra - rb) / len);
+  cairo_arc(cr, a.x(), a.y(), ra, theta + beta, theta + 2 * M_PI - beta);  // round a's back
+  cairo_arc(cr, b.x(), b.y(), rb, theta - beta, theta + beta);             // and b's front
+  cairo_close_path(cr);
 }
 
+// A variable-width stroke as the union of the hulls of consecutive discs along its centre line,
+// flattened finely enough that the union's outline is within ~0.01 px of the exact envelope.
+void ink_path(cairo_t* cr, const InkStroke& ink) {
+  std::vector<Eigen::Vector2d> points = ink.points;
+  std::vector<double> width = ink.width;
+  if (!ink.curve.points.empty()) {
+    points.clear(), width.clear();
+    for (const diffusion::PathSample& p : diffusion::flatten(ink.curve, 0.01)) {
+      points.push_back(p.p);
+      width.push_back(vector::width_at(ink.curve_width, p.t));
+    }
+  } else if (width.size() != points.size()) {
+    return;
+  }
+  const size_t n = points.size();
+  if (n == 1) disc_hull(cr, points[0], 0.5 * width[0], points[0], 0.5 * width[0]);
+  for (size_t i = 0; i + 1 < n + (ink.closed ? 1 : 0); ++i)
+    disc_hull(cr, points[i], 0.5 * width[i], points[(i + 1) % n], 0.5 * width[(i + 1) % n]);
+}
+
+// Ink in the PNG: consecutive strokes of one colour are filled as one path, so where they overlap
+// (and where a stroke's own pieces do) no edge is composited twice.
 void draw_ink(cairo_t* c, const std::vector<InkStroke>& strokes) {
   cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
-  cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
-  cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
-  for (const InkStroke& ink : strokes) {
-    if (!ink.curve.points.empty()) {
-      set_rgb(c, ink.color);
-      for (const InkPiece& piece : ink_pieces(ink)) {
-        cairo_new_path(c);
-        bezier_path(c, piece);
-        cairo_set_line_width(c, piece.width);
-        cairo_stroke(c);
-      }
-      continue;
-    }
-    if (ink.points.size() < 2 || ink.width.size() != ink.points.size()) continue;
+  for (size_t i = 0; i < strokes.size();) {
     cairo_new_path(c);
-    ink_path(c, ink);
-    set_rgb(c, ink.color);
+    size_t j = i;
+    for (; j < strokes.size() && strokes[j].color == strokes[i].color; ++j) ink_path(c, strokes[j]);
+    set_rgb(c, strokes[i].color);
     cairo_fill(c);
+    i = j;
   }
 }
 

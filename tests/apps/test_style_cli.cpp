@@ -213,7 +213,10 @@ TEST_CASE("ink strokes lie on the silhouette of the hair mask", "[cli][style]") 
     cv::bitwise_or(ink, svg_ink, either);
     const double iou = double(cv::countNonZero(both)) / cv::countNonZero(either);
     INFO("ink IoU PNG vs SVG " << iou);
-    CHECK(iou >= 0.97);
+    // Not 1: the PNG fills each colour's strokes as one exact union (every edge pixel's coverage
+    // computed once), while viewers stroke the SVG's constant-width pieces one by one, so their
+    // round caps composite twice where pieces meet and the width steps by up to 0.125 px.
+    CHECK(iou >= 0.95);
   }
 }
 
