@@ -14,6 +14,7 @@ int run_sim(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
 int run_diffuse(const std::vector<std::string>& args);
+int run_groom(const std::vector<std::string>& args);
 // Every row of docs/performance.md's frame table, from the others; not part of `all`.
 int run_frame_table(const std::vector<std::string>& args);
 

@@ -11,13 +11,10 @@
 int main(int argc, char** argv) {
   using Bench = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Bench> benches = {
-      {"solver", wisp::bench::run_solver},
-      {"arrangement", wisp::bench::run_arrangement},
-      {"sim", wisp::bench::run_sim},
-      {"render", wisp::bench::run_render},
-      {"quality", wisp::bench::run_quality},
-      {"diffuse", wisp::bench::run_diffuse},
-      {"frame-table", wisp::bench::run_frame_table},
+      {"solver", wisp::bench::run_solver},   {"arrangement", wisp::bench::run_arrangement},
+      {"sim", wisp::bench::run_sim},         {"render", wisp::bench::run_render},
+      {"quality", wisp::bench::run_quality}, {"diffuse", wisp::bench::run_diffuse},
+      {"groom", wisp::bench::run_groom},     {"frame-table", wisp::bench::run_frame_table},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");

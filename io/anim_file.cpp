@@ -13,6 +13,8 @@
 namespace wisp::io {
 namespace {
 
+constexpr std::uint32_t kWidthsFlag = 1;  // the header's flags: clump widths follow the head
+
 std::uint64_t fnv1a(const char* data, std::size_t n) {
   std::uint64_t h = 0xcbf29ce484222325ull;
   for (std::size_t i = 0; i < n; ++i) {
@@ -67,7 +69,7 @@ void write_animation(const std::filesystem::path& path, const sim::Animation& an
   Writer w;
   w.out = "WSIM";
   w.put(kAnimVersion);
-  w.put(std::uint32_t{0});
+  w.put(std::uint32_t{anim.widths.empty() ? 0u : kWidthsFlag});
   w.put(anim.fps);
   w.put(static_cast<std::uint32_t>(anim.frames.size()));
   const std::vector<sim::Polyline> none;
@@ -82,6 +84,18 @@ void write_animation(const std::filesystem::path& path, const sim::Animation& an
   for (const auto& v : h.mesh.vertices) w.vec(v);
   for (const auto& t : h.mesh.triangles)
     for (int k = 0; k < 3; ++k) w.put(static_cast<std::int32_t>(t[k]));
+  if (!anim.widths.empty()) {
+    if (anim.widths.size() != first.size())
+      throw std::invalid_argument("write_animation: clump widths for " +
+                                  std::to_string(anim.widths.size()) + " strands, frames have " +
+                                  std::to_string(first.size()));
+    for (std::size_t s = 0; s < first.size(); ++s) {
+      if (anim.widths[s].size() != first[s].size())
+        throw std::invalid_argument("write_animation: strand " + std::to_string(s) +
+                                    " has clump widths for another sample count");
+      for (double v : anim.widths[s]) w.put(v);
+    }
+  }
   for (const auto& f : anim.frames) {
     if (f.strands.size() != first.size())
       throw std::invalid_argument("write_animation: frame " + std::to_string(f.frame) +
@@ -120,7 +134,9 @@ sim::Animation read_animation(const std::filesystem::path& path) {
   if (version != kAnimVersion)
     throw std::runtime_error(name + ": .wsim version " + std::to_string(version) +
                              " is not supported (this wisp reads version 1)");
-  r.get<std::uint32_t>("header");
+  const auto flags = r.get<std::uint32_t>("header");
+  if (flags & ~kWidthsFlag)
+    throw std::runtime_error(name + ": unknown .wsim flags " + std::to_string(flags));
   sim::Animation anim;
   anim.fps = r.get<double>("header");
   if (!(anim.fps > 0 && anim.fps <= 1000))
@@ -150,7 +166,9 @@ sim::Animation read_animation(const std::filesystem::path& path) {
     throw std::runtime_error(name + ": the head is a mesh without triangles");
   // Check the announced size before allocating.
   const std::uint64_t frame_bytes = 4 + 8 + 24 + 32 + 24 * total;
-  const std::uint64_t expected = r.at() + 24 * vertices + 12 * triangles + frames * frame_bytes;
+  const std::uint64_t widths = flags & kWidthsFlag ? total : 0;
+  const std::uint64_t expected =
+      r.at() + 24 * vertices + 12 * triangles + 8 * widths + frames * frame_bytes;
   if (expected > body)
     throw std::runtime_error(name + ": truncated .wsim file (" + std::to_string(bytes.size()) +
                              " bytes, the header announces " + std::to_string(expected + 8) + ")");
@@ -177,6 +195,17 @@ sim::Animation read_animation(const std::filesystem::path& path) {
       t[k] = r.get<std::int32_t>("head mesh");
       if (t[k] < 0 || static_cast<std::uint64_t>(t[k]) >= vertices)
         throw std::runtime_error(name + ": a head triangle refers to a missing vertex");
+    }
+  }
+  if (widths > 0) {
+    anim.widths.resize(strands);
+    for (std::uint32_t s = 0; s < strands; ++s) {
+      anim.widths[s].resize(samples[s]);
+      for (double& v : anim.widths[s]) {
+        v = r.get<double>("clump widths");
+        if (!(v >= 0 && v <= 10))
+          throw std::runtime_error(name + ": a clump width is not in [0, 10] m");
+      }
     }
   }
   anim.frames.resize(frames);

@@ -207,6 +207,7 @@ void parse_hair(Fields& f, Scene& s) {
   f.get("file", file);
   if (!file.empty()) h.file = resolve(s.path, file);
   f.get("count", h.count);
+  f.get("guides", h.guides);
   f.get("segments", h.segments);
   f.get("length", h.length);
   f.get("length_variation", h.length_variation);

@@ -21,6 +21,9 @@ struct StrandFrame {
 struct Animation {
   double fps = 24;
   HeadGeometry head;  // what the strands collided with; the renderer's occlusion tests use it too
+  // Per strand, per sample: the full width (m) of the clump the guide stands for; empty when the
+  // wisps take the style's width (sim::SimSetup::widths).
+  std::vector<std::vector<double>> widths;
   std::vector<StrandFrame> frames;
 };
 

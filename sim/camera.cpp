@@ -135,6 +135,7 @@ ProjectedFrame Projector::project(const StrandFrame& frame) {
     ps.world = line;
     ps.tangent.resize(n);
     ps.visible.resize(n);
+    if (s < options_.widths.size()) ps.width = options_.widths[s];
     if (fresh) visible_[s].assign(n, 1);
     for (std::size_t i = 0; i < n; ++i) {
       const Vector3d& x = line[i];

@@ -45,6 +45,8 @@ class BodyShape;
 struct ProjectorOptions {
   Eigen::Vector3d light_dir = default_light_dir();  // copied into every frame (normalised)
   std::shared_ptr<const BodyParams> body;           // occluding neck, torso, arms; null: none
+  // Per strand: copied into ProjectedStrand::width (sim::Animation::widths); empty: none.
+  std::vector<std::vector<double>> widths;
 };
 
 class Projector {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/point_grid.hpp"
 #include "sim/rng.hpp"
 
 namespace wisp::sim {
@@ -27,10 +28,24 @@ bool on_scalp(const Vector3d& d, const HairParams& h) {
 }
 
 // Mitchell's best-candidate sampling: each new root is the candidate farthest from the roots
-// already placed, which spreads them like blue noise without a radius to tune.
+// already placed, which spreads them like blue noise without a radius to tune. The nearest root
+// comes from a grid whose cells shrink as roots are added (rebuilt at each doubling, cells about
+// the spacing of the roots so far): the same roots as a scan of all of them, in O(n log n).
 std::vector<Vector3d> scalp_roots(const HairParams& h, const HeadShape& head, Rng& rng) {
   constexpr int kCandidates = 24;
   std::vector<Vector3d> roots;
+  const Eigen::AlignedBox3d box(head.center() - 1.01 * head.half_extent(),
+                                head.center() + 1.01 * head.half_extent());
+  const double area = 4 * M_PI * head.half_extent().squaredNorm() / 3;  // the surface, roughly
+  PointGrid grid(box, 1.0);
+  std::size_t rebuild_at = 1;
+  const auto nearest_root = [&](const Vector3d& p) {
+    double nearest = std::numeric_limits<double>::max();
+    grid.search(
+        p, [&](int, const Vector3d& r) { nearest = std::min(nearest, (p - r).squaredNorm()); },
+        [&] { return nearest; });
+    return nearest;
+  };
   const auto draw = [&]() {
     for (int tries = 0; tries < 100000; ++tries) {
       const Vector3d d = random_direction(rng);
@@ -44,14 +59,20 @@ std::vector<Vector3d> scalp_roots(const HairParams& h, const HeadShape& head, Rn
     double best_d = -1;
     for (int c = 0; c < (i == 0 ? 1 : kCandidates); ++c) {
       const Vector3d p = c == 0 ? best : draw();
-      double nearest = std::numeric_limits<double>::max();
-      for (const Vector3d& r : roots) nearest = std::min(nearest, (p - r).squaredNorm());
+      const double nearest = nearest_root(p);
       if (nearest > best_d) {
         best_d = nearest;
         best = p;
       }
     }
     roots.push_back(best);
+    if (roots.size() >= rebuild_at) {
+      rebuild_at *= 2;
+      grid = PointGrid(box, std::sqrt(area / double(rebuild_at)));
+      for (std::size_t r = 0; r < roots.size(); ++r) grid.insert(roots[r], int(r));
+    } else {
+      grid.insert(best, int(roots.size()) - 1);
+    }
   }
   return roots;
 }

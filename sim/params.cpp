@@ -55,9 +55,13 @@ void validate(const HairParams& h) {
           std::string("must be ") + (procedural ? "at least 1" : ">= 0 (0 = all strands)") +
               ", got " + std::to_string(h.count));
   require(h.count <= 100000, "count", "at most 100000 guides");
+  require(h.guides >= 0 && h.guides <= 100000, "guides",
+          "must be in [0, 100000] (0: every strand is a guide), got " + std::to_string(h.guides));
   require(procedural ? h.segments >= 1 : h.segments >= 0, "segments",
           "must be at least 1 (0 keeps a file's points), got " + std::to_string(h.segments));
   require(h.segments <= 1000, "segments", "at most 1000");
+  require(!procedural || h.guides == 0 || double(h.count) * (h.segments + 1) <= kMaxGroomSamples,
+          "count", "a dense model (with guides) has at most 2e7 samples: count x (segments + 1)");
   require(positive(h.length) && h.length <= 10, "length", "must be in (0, 10] m");
   require(h.length_variation >= 0 && h.length_variation < 1, "length_variation",
           "must be in [0, 1)");

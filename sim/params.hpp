@@ -58,8 +58,12 @@ constexpr std::array<Choice<HairCurl>, 3> choices(HairCurl) {
 
 struct HairParams {
   HairSource source = HairSource::Procedural;
-  std::filesystem::path file;      // strand file for sources Json and Hair
-  int count = 150;                 // guides (for files: guides selected from the file, 0 = all)
+  std::filesystem::path file;  // strand file for sources Json and Hair
+  int count = 150;             // guides (for files: guides selected from the file, 0 = all)
+  // > 0: the model is dense; its strands (`count` procedural ones, or every strand of a file) are
+  // clustered into this many clumps, one guide per clump (sim/clumps.hpp), each as wide as its
+  // clump. 0: every strand is a guide and wisps take the style's width.
+  int guides = 0;
   int segments = 24;               // segments per guide (for files: 0 keeps the file's points)
   double length = 0.30;            // mean strand length (m)
   double length_variation = 0.15;  // relative, uniform in [-v, +v]
@@ -174,6 +178,7 @@ constexpr double kMaxGuideSamples = 1e6;    // guides x samples per guide
 constexpr double kMaxSimWork = 2e8;         // guide samples x sub-steps x iterations
 constexpr double kMaxAnimationBytes = 2e9;  // frames x guide samples x 24 bytes, in memory
 constexpr int kMaxCameraSide = 16384;       // io::kMaxImageSide
+constexpr double kMaxGroomSamples = 2e7;    // strands x samples of a dense procedural model
 
 // The simulation's size against the budgets above: `samples` guide samples in all (guides x
 // (segments + 1) for procedural hair, the strands actually kept for files). Throws

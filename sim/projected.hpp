@@ -19,6 +19,9 @@ struct ProjectedStrand {
   std::vector<Eigen::Vector3d> world;    // 3D position (scene units)
   std::vector<Eigen::Vector3d> tangent;  // unit 3D tangent in world space, towards the tip
   std::vector<std::uint8_t> visible;     // 1 where the sample is not hidden by the head
+  // Full width (scene units) of the clump this guide stands for, per sample; empty: the wisp
+  // takes the style's width and profile.
+  std::vector<double> width;
 };
 
 struct ProjectedFrame {

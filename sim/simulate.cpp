@@ -111,6 +111,12 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   if (!(setup.duration > 0) || !std::isfinite(setup.duration))
     throw std::invalid_argument("motion.duration: must be a positive number of seconds");
   if (setup.rest.empty()) throw std::invalid_argument("hair: the hair model has no strands");
+  if (!setup.widths.empty()) {
+    bool fits = setup.widths.size() == setup.rest.size();
+    for (std::size_t s = 0; fits && s < setup.rest.size(); ++s)
+      fits = setup.widths[s].size() == setup.rest[s].size();
+    if (!fits) throw std::invalid_argument("hair: clump widths do not match the guides");
+  }
   for (std::size_t s = 0; s < setup.rest.size(); ++s) {
     const Polyline& p = setup.rest[s];
     if (p.size() < 2)
@@ -135,6 +141,7 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   Animation anim;
   anim.fps = sp.fps;
   anim.head = setup.head;
+  anim.widths = setup.widths;
   anim.frames.reserve(frames);
   // The pre-roll runs steps at negative times, where the motion holds its first pose: the hair
   // settles from its rest shape before frame 0.

@@ -22,6 +22,9 @@ struct SimSetup {
   std::vector<Keyframe> motion;    // expanded keyframes (sim/motion.hpp)
   double duration = 4.0;           // seconds
   std::vector<Polyline> rest;      // guides at rest, head-local metres, root first
+  // Per guide, per rest sample: the full width (m) of the clump it stands for (hair.guides);
+  // empty: wisps take the style's width.
+  std::vector<std::vector<double>> widths;
   SimParams sim;
 };
 

@@ -42,12 +42,15 @@ void check_strand(const sim::ProjectedStrand& s) {
   check_size(s.depth.size(), "depth", false);
   check_size(s.tangent.size(), "tangent", true);
   check_size(s.visible.size(), "visible", true);
+  check_size(s.width.size(), "width", true);
   for (size_t i = 0; i < n; ++i) {
     const std::string at = "sample " + std::to_string(i) + ": ";
     if (!s.pixel[i].allFinite()) fail(s, at + "pixel is not finite");
     if (!std::isfinite(s.depth[i]) || s.depth[i] <= 0)
       fail(s, at + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
     if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at + "tangent is not finite");
+    if (!s.width.empty() && !(std::isfinite(s.width[i]) && s.width[i] >= 0))
+      fail(s, at + "width must be finite and >= 0, got " + std::to_string(s.width[i]));
   }
 }
 
@@ -71,13 +74,41 @@ std::pair<int, int> usable_run(const sim::ProjectedStrand& s, const WispStyle& s
   return best;
 }
 
-// One centre span with the depth and strand parameter at its ends (both linear in v).
+// One centre span with the depth and strand parameter at its ends (both linear in v), and the
+// strand's own full width there when it stands for a clump (w0 < 0: the style's width).
 struct Span {
   Cubic b;
   double z0, z1, u0, u1;
+  double w0 = -1, w1 = -1;
 };
 
 constexpr int kWidthSamples = 16;  // per span, for the width limit table
+
+// A point of the centre line: a kept sample, or a square cap's end.
+struct CentrePoint {
+  Vector2d pixel;
+  double depth, u;  // u: the strand parameter
+  Vector3d tangent;
+  double width;  // the clump's full width (scene units), -1 for the style's
+};
+
+// A clump's strands reach past its guide's ends by about the clump's spread (their roots lie
+// around the guide's on the scalp, some are longer): a wisp that stands for a clump goes on
+// straight past each end by its half-width there, like a stroke's square cap, with the end's
+// depth, strand parameter, tangent and width.
+void square_caps(std::vector<CentrePoint>& points, double focal_px, const WispStyle& style) {
+  const auto cap = [&](const CentrePoint& end, const CentrePoint& inner) {
+    CentrePoint p = end;
+    const Vector2d d = (end.pixel - inner.pixel).normalized();
+    const double half = std::min(0.5 * end.width * focal_px / end.depth, style.max_width_px);
+    p.pixel = end.pixel + half * d;
+    return p;
+  };
+  const CentrePoint root = cap(points[0], points[1]), tip = cap(points.back(), points.end()[-2]);
+  if ((root.pixel - points[0].pixel).norm() > style.merge_distance_px)
+    points.insert(points.begin(), root);
+  if ((tip.pixel - points.back().pixel).norm() > style.merge_distance_px) points.push_back(tip);
+}
 
 // The offset curves p(v) = B(v) + N(v) d_left(v) and B(v) - N(v) d_right(v) of each span.
 //
@@ -121,9 +152,13 @@ struct Extruder {
     return {d.y(), -d.x()};
   }
 
-  // Perspective width times the profile and the root taper, before any limit.
+  // Perspective width times the profile and the root taper, before any limit. A clump's width
+  // is its own profile: neither the style's profile nor the root taper applies.
   double free_width(int i, double v) const {
     const Span& s = spans[i];
+    if (s.w0 >= 0)
+      return std::min(0.5 * (s.w0 + (s.w1 - s.w0) * v) * focal_px / depth(i, v),
+                      style.max_width_px);
     const double u = s.u0 + (s.u1 - s.u0) * v;
     const double taper =
         u < style.root_taper ? std::sin(0.5 * M_PI * std::max(0.0, u) / style.root_taper) : 1.0;
@@ -348,31 +383,33 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   w.strand = strand.id;
   w.first_sample = first;
   w.last_sample = last;
-  std::vector<Vector2d> points;
-  for (int i : kept) points.push_back(strand.pixel[i]);
+  std::vector<CentrePoint> points;
+  for (int i : kept)
+    points.push_back({strand.pixel[i], strand.depth[i], double(i) / (samples - 1),
+                      strand.tangent.empty() ? Vector3d::Zero() : strand.tangent[i],
+                      strand.width.empty() ? -1.0 : strand.width[i]});
+  if (!strand.width.empty()) square_caps(points, focal_px, style);
+  std::vector<Vector2d> pixels;
+  for (const CentrePoint& p : points) pixels.push_back(p.pixel);
   CentreSpline& c = w.centre;
-  c.points = catmull_rom_path(points).points;
+  c.points = catmull_rom_path(pixels).points;
   const int k = c.piece_count();
 
-  auto sample_tangent = [&](int i) -> Vector3d {
-    return strand.tangent.empty() ? Vector3d::Zero() : strand.tangent[i];
-  };
-  auto strand_u = [&](int i) { return double(i) / (samples - 1); };
   std::vector<Span> spans;
   for (int s = 0; s < k; ++s) {
-    const int a = kept[s], b = kept[s + 1];
-    spans.push_back({c.piece(s), strand.depth[a], strand.depth[b], strand_u(a), strand_u(b)});
+    const CentrePoint &a = points[s], &b = points[s + 1];
+    spans.push_back({c.piece(s), a.depth, b.depth, a.u, b.u, a.width, b.width});
     for (int j = 0; j < 3; ++j) {
       const double f = j / 3.0;
-      c.depth.push_back(strand.depth[a] + (strand.depth[b] - strand.depth[a]) * f);
-      const Vector3d t = (1 - f) * sample_tangent(a) + f * sample_tangent(b);
+      c.depth.push_back(a.depth + (b.depth - a.depth) * f);
+      const Vector3d t = (1 - f) * a.tangent + f * b.tangent;
       c.tangent.push_back(t.norm() > 0 ? Vector3d(t.normalized()) : t);
-      c.strand_u.push_back(strand_u(a) + (strand_u(b) - strand_u(a)) * f);
+      c.strand_u.push_back(a.u + (b.u - a.u) * f);
     }
   }
-  c.depth.push_back(strand.depth[last]);
-  c.tangent.push_back(sample_tangent(last));
-  c.strand_u.push_back(strand_u(last));
+  c.depth.push_back(points.back().depth);
+  c.tangent.push_back(points.back().tangent);
+  c.strand_u.push_back(points.back().u);
 
   const Extruder ex(spans, style, focal_px);
   for (int s = 0; s <= k; ++s) {

@@ -1,7 +1,8 @@
 // Wisps: the 2D shapes of projected guide strands (Faraj 2009, section 3.2.1). A strand's projected
 // samples become a centre spline B(t); the wisp is the band p = B(t) +- N(t) d(t) around it,
 // closed root -> tip along the left side and tip -> root along the right side. The half-width
-// d(t) is the style's world width scaled by perspective and the width profile; each side is then
+// d(t) is the style's world width scaled by perspective and the width profile (or, for a guide
+// that stands for a clump of a dense groom, the clump's width it carries); each side is then
 // limited by the nearby centres of curvature on that side so the offset never folds over itself
 // (Faraj could not render curly hair because his offsets looped). The outline is a cubic Bezier
 // path with depth per control point; its flattening (the sections of the band) feeds the

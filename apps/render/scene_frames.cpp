@@ -35,7 +35,9 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
   }
 
   // In order: each frame's head occlusion starts from the previous frame's (hysteresis).
-  sim::Projector projector(out.anim.head, scene.camera, projector_options(scene));
+  sim::ProjectorOptions projection = projector_options(scene);
+  projection.widths = out.anim.widths;
+  sim::Projector projector(out.anim.head, scene.camera, projection);
   out.projected.reserve(out.anim.frames.size());
   for (const sim::StrandFrame& f : out.anim.frames) out.projected.push_back(projector.project(f));
 

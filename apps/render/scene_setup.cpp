@@ -10,6 +10,7 @@
 #include "io/hair_file.hpp"
 #include "io/hair_json.hpp"
 #include "io/scene_mesh.hpp"
+#include "sim/clumps.hpp"
 #include "sim/hair_model.hpp"
 
 namespace wisp::render {
@@ -24,6 +25,31 @@ void check_reach(const Eigen::Vector3d& p, const std::string& what, const std::s
   throw std::invalid_argument(fields + ": " + what + " lies " + where +
                               " m from the head (at most " +
                               std::to_string(int(sim::kMaxWorldMetres)) + " m)");
+}
+
+// The guides of a dense model (hair.guides > 0): its strands clustered into clumps, each clump's
+// medoid resampled to hair.segments (0 keeps its points) and kept off the head, with the clump's
+// width along it.
+void add_clump_guides(const std::vector<sim::Polyline>& strands, const io::Scene& scene,
+                      sim::SimSetup& setup) {
+  const sim::HairParams& h = scene.hair;
+  sim::ClumpOptions options;
+  options.count = h.guides;
+  options.seed = h.seed;
+  const sim::Clumps clumps = sim::cluster_strands(strands, options);
+  double samples = 0;
+  for (int i : clumps.guide) samples += h.segments > 0 ? h.segments + 1 : double(strands[i].size());
+  sim::check_budget(samples, scene.motion, scene.sim);
+  std::vector<std::vector<int>> members(clumps.guide.size());
+  for (std::size_t i = 0; i < strands.size(); ++i) members[clumps.clump_of[i]].push_back(int(i));
+  const sim::HeadShape head(setup.head);
+  for (std::size_t c = 0; c < clumps.guide.size(); ++c) {
+    const sim::Polyline& medoid = strands[clumps.guide[c]];
+    sim::Polyline guide = h.segments > 0 ? sim::resample(medoid, h.segments) : medoid;
+    sim::clear_head(guide, head, scene.sim.collision_margin + 0.002);
+    setup.widths.push_back(sim::clump_width(guide, strands, members[c]));
+    setup.rest.push_back(std::move(guide));
+  }
 }
 
 }  // namespace
@@ -44,6 +70,13 @@ sim::SimSetup load_sim_setup(const io::Scene& scene) {
       v = v * scene.head.mesh_scale + scene.head.mesh_offset;
       check_reach(v, "vertex " + std::to_string(i + 1) + " of " + scene.head.mesh.string(),
                   "head.mesh_scale");
+    }
+    if (scene.hair.source == sim::HairSource::Procedural && scene.hair.guides > 0) {
+      sim::SimSetup setup = sim::make_base_setup(scene.head, scene.motion, scene.sim, mesh);
+      const sim::HeadShape head(setup.head);
+      add_clump_guides(sim::generate_hair(scene.hair, head, scene.sim.collision_margin + 0.002),
+                       scene, setup);
+      return setup;
     }
     if (scene.hair.source == sim::HairSource::Procedural) {
       sim::check_budget(double(scene.hair.count) * (scene.hair.segments + 1), scene.motion,
@@ -76,6 +109,10 @@ sim::SimSetup load_sim_setup(const io::Scene& scene) {
     }
     if (usable.empty())
       throw std::runtime_error("hair.file: " + h.file.string() + " has no strand with 2 points");
+    if (h.guides > 0) {
+      add_clump_guides(usable, scene, setup);
+      return setup;
+    }
     const std::vector<int> guides = sim::select_guides(usable, h.count);
     double samples = 0;
     for (int i : guides) samples += h.segments > 0 ? h.segments + 1 : double(usable[i].size());

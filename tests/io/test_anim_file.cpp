@@ -100,3 +100,30 @@ TEST_CASE("truncated, corrupt and foreign .wsim files are clear errors", "[io][a
   CHECK_THROWS_WITH(io::read_animation(dir / "none.wsim"), Catch::Contains("cannot open"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("clump widths are saved with the animation and read back", "[io][anim][clumps]") {
+  const auto dir = temp_dir();
+  sim::Animation anim = sim::simulate(small_setup());
+  for (const sim::Polyline& s : anim.frames.front().strands) {
+    anim.widths.emplace_back();
+    for (std::size_t i = 0; i < s.size(); ++i) anim.widths.back().push_back(0.01 + 0.001 * i);
+  }
+  io::write_animation(dir / "w.wsim", anim);
+  const sim::Animation back = io::read_animation(dir / "w.wsim");
+  CHECK(back.widths == anim.widths);
+  CHECK(back.frames.back().strands == anim.frames.back().strands);
+  // Without widths the file is the version-1 layout of before, flags 0.
+  io::write_animation(dir / "plain.wsim", sim::simulate(small_setup()));
+  CHECK(io::read_animation(dir / "plain.wsim").widths.empty());
+  CHECK(bytes_of(dir / "plain.wsim")[8] == 0);
+  CHECK(bytes_of(dir / "plain.wsim").size() + 8 * 12 * 11 == bytes_of(dir / "w.wsim").size());
+  // A width list that does not match the strands is refused; so are unknown flags.
+  anim.widths.back().pop_back();
+  CHECK_THROWS_WITH(io::write_animation(dir / "bad.wsim", anim), Catch::Contains("strand 11"));
+  std::string flags = bytes_of(dir / "plain.wsim");
+  flags[8] = 6;
+  std::ofstream(dir / "flags.wsim", std::ios::binary) << flags;
+  CHECK_THROWS_WITH(io::read_animation(dir / "flags.wsim"),
+                    Catch::Contains("unknown .wsim flags 6"));
+  std::filesystem::remove_all(dir);
+}

@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -10,6 +12,7 @@
 #include "io/hair_file.hpp"
 #include "io/hair_json.hpp"
 #include "io/scene.hpp"
+#include "sim/clumps.hpp"
 
 using namespace wisp::io;
 using Eigen::Vector3d;
@@ -136,5 +139,49 @@ TEST_CASE("a .hair file becomes evenly spread, resampled guides on the head", "[
   for (std::size_t a = 0; a < 8; ++a)
     for (std::size_t b = a + 1; b < 8; ++b)
       CHECK((setup.rest[a][0] - setup.rest[b][0]).norm() > 2 * 0.09 * std::sin(M_PI / 9) - 1e-9);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE(
+    "a dense .hair model becomes one guide per clump; 20 000 x 30 points load and cluster "
+    "in seconds",
+    "[io][hair][clumps]") {
+  const auto dir = temp_dir();
+  // The procedural generator's hair at 20 000 strands of 30 points, in centimetres, z up.
+  wisp::sim::HairParams groom;
+  groom.count = 20000;
+  groom.segments = 29;
+  HairFile h;
+  h.strands = wisp::sim::generate_hair(groom, wisp::sim::HeadShape(wisp::sim::HeadGeometry{}));
+  for (auto& s : h.strands)
+    for (auto& p : s) p = Vector3d(p.x(), -p.z(), p.y()) * 100;
+  write_hair_file(dir / "dense.hair", h);
+  std::ofstream(dir / "scene.json") << R"({"hair": {"source": "hair", "file": "dense.hair",
+      "guides": 150, "file_scale": 0.01, "file_z_up": true}})";
+  const Scene scene = load_scene(dir / "scene.json");
+  const auto start = std::chrono::steady_clock::now();
+  const wisp::sim::SimSetup setup = wisp::render::load_sim_setup(scene);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[measured] load and cluster 20000 x 30 points into 150 clumps: %.2f s\n", seconds);
+  CHECK(seconds < 10);  // 2 s in a Release build on the reference machine (docs/scene.md)
+  REQUIRE(setup.rest.size() == 150);
+  REQUIRE(setup.widths.size() == 150);
+
+  // The guides are the medoids of the file's own strands, resampled to hair.segments.
+  std::vector<wisp::sim::Polyline> strands = read_hair_file(dir / "dense.hair").strands;
+  for (auto& s : strands)
+    for (auto& p : s) p = Vector3d(p.x(), p.z(), -p.y()) * 0.01;
+  wisp::sim::ClumpOptions options;
+  options.count = 150;
+  options.seed = scene.hair.seed;
+  const wisp::sim::Clumps clumps = wisp::sim::cluster_strands(strands, options);
+  for (std::size_t c = 0; c < 150; ++c) {
+    const wisp::sim::Polyline& medoid = strands[clumps.guide[c]];
+    REQUIRE(setup.rest[c].size() == 25);
+    CHECK(setup.rest[c].front() == medoid.front());
+    CHECK((setup.rest[c].back() - medoid.back()).norm() < 1e-3);  // kept off the head at most
+    CHECK(setup.widths[c].size() == 25);
+  }
   std::filesystem::remove_all(dir);
 }

@@ -169,6 +169,13 @@ TEST_CASE("bad values are errors naming the field", "[io][scene]") {
             .find("motion.keys[1].time: keyframe times must increase") != std::string::npos);
   CHECK(error_of({{"head", {{"shape", "mesh"}}}}).find("head.mesh") != std::string::npos);
   CHECK(error_of({{"hair", {{"source", "hair"}}}}).find("hair.file") != std::string::npos);
+  CHECK(error_of({{"hair", {{"guides", -1}}}}) ==
+        "scene.json: hair.guides: must be in [0, 100000] (0: every strand is a guide), got -1");
+  CHECK(error_of({{"hair", {{"guides", "many"}}}}) ==
+        "scene.json: hair.guides: expected an integer, got \"many\"");
+  CHECK(error_of({{"hair", {{"guides", 10}, {"count", 100000}, {"segments", 999}}}})
+            .find("scene.json: hair.count: a dense model (with guides) has at most 2e7") == 0);
+  CHECK(parse_scene({{"hair", {{"guides", 40}}}}, "scene.json").hair.guides == 40);
 }
 
 TEST_CASE("NaN in keyframes and malformed JSON are clear errors", "[io][scene]") {

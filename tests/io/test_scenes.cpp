@@ -37,8 +37,8 @@ fs::path scene_file(const char* name) {
 
 TEST_CASE("every shipped scene simulates, and its hair sits on the head inside the frame",
           "[io][scenes]") {
-  for (const char* name :
-       {"default.json", "bob.json", "curly.json", "long-wind.json", "sim_small.json"}) {
+  for (const char* name : {"default.json", "bob.json", "curly.json", "long-wind.json",
+                           "sim_small.json", "dense.json"}) {
     INFO(name);
     wisp::io::Scene scene = wisp::io::load_scene(scene_file(name));
     scene.motion.duration = std::min(scene.motion.duration, 1.0);
