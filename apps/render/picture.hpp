@@ -68,6 +68,15 @@ struct FlatRegion {
   std::vector<std::pair<double, Rgb>> stops;  // offset in [0,1], colour
 };
 
+// A stylised highlight (vector/highlights.hpp) for flat SVGs, where the gradients along the wisps
+// do not draw it: its outline, filled with its colour where its wisp is in front (the wisp's
+// FlatRegion). PNGs and embedded SVGs have it in the hair image already.
+struct Highlight {
+  int wisp = -1;  // vector::Wisp::strand
+  std::vector<Eigen::Vector2d> ring;
+  Rgb color = Rgb::Zero();
+};
+
 // A wisp's closed outline, for the hidden debug layer of SVGs.
 struct WispOutline {
   int wisp = -1;  // vector::Wisp::strand
@@ -86,10 +95,11 @@ struct FramePicture {
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
   std::vector<InkStroke> ink;  // on top of everything
-  // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
-  // --svg-style flat.
+  // SVG only: the wisp outlines, in a hidden debug layer, and the per-wisp regions and highlights
+  // of --svg-style flat.
   std::vector<WispOutline> outlines;
   std::vector<FlatRegion> flat;
+  std::vector<Highlight> highlights;  // flat SVGs only
 };
 
 // 8-bit RGBA, row-major, not premultiplied (alpha is 255 everywhere: frames are opaque).

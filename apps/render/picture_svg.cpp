@@ -352,7 +352,28 @@ void hair_layer(const Writer& w, LayerText& out) {
   }
 }
 
-void highlights_layer(const Writer&, LayerText&) {}
+// Flat SVGs: each highlight filled with its colour, clipped to where its wisp is in front (a copy
+// of its region's path: clip paths that only use the hair layer's paths would tie the layers
+// together, and animation.svg could no longer share or rename them apart); in embedded SVGs the
+// shading image holds them.
+void highlights_layer(const Writer& w, LayerText& out) {
+  std::map<int, const FlatRegion*> regions;
+  for (const FlatRegion& r : w.pic.flat) regions[r.wisp] = &r;
+  std::map<int, int> count;
+  for (const Highlight& h : w.pic.highlights) {
+    const auto region = regions.find(h.wisp);
+    if (h.ring.size() < 3 || region == regions.end()) continue;
+    const std::string front = "wisp-" + std::to_string(h.wisp) + "-front";
+    if (count[h.wisp] == 0)
+      out.defs << "<clipPath id=\"" << front << "\" clipPathUnits=\"userSpaceOnUse\"><path "
+               << "clip-rule=\"evenodd\" d=\"" << mask_path(w.num, region->second->area)
+               << "\"/></clipPath>\n";
+    PathData d(w.num);
+    ring_path(d, h.ring);
+    out.body << "<path id=\"highlight-" << h.wisp << '-' << ++count[h.wisp] << "\" d=\"" << d.str()
+             << "\" fill=\"" << hex(h.color) << "\" clip-path=\"url(#" << front << ")\"/>\n";
+  }
+}
 
 void ink_layer(const Writer& w, LayerText& out) {
   ink_strokes(out.body, w.num, "ink", w.pic.ink);

@@ -143,8 +143,12 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   pic.base = r.arrangement.base_region;
   pic.base_color = base_color;
   for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.strand, {w.outline.points}});
-  if (setup.flat_regions)
+  if (setup.flat_regions) {
     pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
+    for (vector::HighlightRing& h : hc.highlights)
+      pic.highlights.push_back(
+          {r.wisps[h.wisp].strand, std::move(h.ring), setup.style.specular.color});
+  }
   if (setup.style.ink.enabled()) {
     t0 = Clock::now();
     r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);

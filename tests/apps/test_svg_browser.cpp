@@ -308,7 +308,7 @@ TEST_CASE("SVG layers are Inkscape layers with ids that say what things are, eac
     for (const std::string& pattern :
          {"wisp-\\d+" + f, "wisp-\\d+-gradient" + f, "ink-silhouette-\\d+" + f,
           "ink-occlusion-\\d+" + f, "face-brow-1" + f, "head-1" + f, "head-shadow-1" + f,
-          "hair-base-fill" + f, "background-fill" + f}) {
+          "hair-base-fill" + f, "background-fill" + f, "highlight-\\d+-\\d+" + f}) {
       INFO("an id like " << pattern);
       CHECK(std::any_of(ids.begin(), ids.end(), [&](const std::string& id) {
         return std::regex_match(id, std::regex(pattern));
