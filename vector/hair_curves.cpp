@@ -176,22 +176,29 @@ diffusion::DiffusionCurve outline_curve(int w, const Wisp& wisp, const WispShade
   return outline;
 }
 
-// The highlights in pixels, each where its wisp shows, for the outlines in front of them; none
-// without highlights or regions.
-std::optional<HighlightCover> highlight_cover(const WispCharts& charts,
-                                              const std::vector<std::vector<ChartPolygon>>& shapes,
+// The highlights' outlines in pixels.
+std::vector<HighlightRing> highlight_rings(const WispCharts& charts,
+                                           const std::vector<std::vector<ChartPolygon>>& shapes) {
+  std::vector<HighlightRing> out;
+  for (size_t w = 0; w < shapes.size(); ++w)
+    for (const ChartPolygon& p : shapes[w]) {
+      const WispChart& chart = *charts.chart[w];
+      HighlightRing h{int(w), {}};
+      for (const Vector2d& tu : highlight_outline(chart, charts.samples[w].size(), p))
+        h.ring.push_back(chart.point(tu.x(), tu.y()));
+      out.push_back(std::move(h));
+    }
+  return out;
+}
+
+// The highlights, each where its wisp shows, for the outlines in front of them; none without
+// highlights or regions.
+std::optional<HighlightCover> highlight_cover(const std::vector<HighlightRing>& rings,
                                               const std::optional<VisibleRegions>& regions) {
   if (!regions) return std::nullopt;
   std::optional<HighlightCover> cover;
   cover.emplace(*regions);
-  for (size_t w = 0; w < shapes.size(); ++w)
-    for (const ChartPolygon& p : shapes[w]) {
-      const WispChart& chart = *charts.chart[w];
-      std::vector<Vector2d> ring;
-      for (const Vector2d& tu : highlight_outline(chart, charts.samples[w].size(), p))
-        ring.push_back(chart.point(tu.x(), tu.y()));
-      cover->add(int(w), std::move(ring));
-    }
+  for (const HighlightRing& h : rings) cover->add(h.wisp, h.ring);
   if (cover->empty()) return std::nullopt;
   return cover;
 }
@@ -240,8 +247,9 @@ HairCurves shade_hair(const sim::ProjectedFrame& frame, const std::vector<Wisp>&
       highlight_shapes(charts.chart, charts.samples, style, light, frame);
 
   // Outlines first, in wisp order, then the curves inside the wisps.
-  const std::optional<HighlightCover> cover = highlight_cover(charts, highlights, regions);
   HairCurves result;
+  result.highlights = highlight_rings(charts, highlights);
+  const std::optional<HighlightCover> cover = highlight_cover(result.highlights, regions);
   result.outline_of.assign(wisps.size(), -1);
   InnerCurves inner;
   for (int w = 0; w < int(wisps.size()); ++w) {

@@ -39,8 +39,15 @@ struct HairCurveStats {
   int outlines = 0, centre_lines = 0, band_edges = 0, highlights = 0;
 };
 
+// A highlight's outline in pixels; it shows where its wisp is visible.
+struct HighlightRing {
+  int wisp = -1;  // index into the wisps
+  std::vector<Eigen::Vector2d> ring;
+};
+
 struct HairCurves {
   std::vector<diffusion::DiffusionCurve> curves;  // outlines first (wisp order), then the rest
+  std::vector<HighlightRing> highlights;          // the highlights' shapes (as vector art)
   std::vector<int> outline_of;  // per wisp: the index of its outline in `curves`, or -1
   HairCurveStats stats;
 };

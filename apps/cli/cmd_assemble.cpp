@@ -1,7 +1,8 @@
 // `wisp assemble OUTDIR`: the last step of a render split into ranges, by a farm's tasks or by
 // hand on several machines (`wisp render --frames A:B --no-previews --stats OUTDIR/stats/NAME.json`
 // into one folder): checks that every frame is there, then writes the preview video, the contact
-// sheet and one stats.json merged from OUTDIR/stats/*.json (render::merged_stats).
+// sheet, on request animation.svg, and one stats.json merged from OUTDIR/stats/*.json
+// (render::merged_stats).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +28,7 @@ namespace fs = std::filesystem;
 
 struct AssembleArgs {
   std::string outdir, scene, anim;
-  bool quiet = false;
+  bool quiet = false, animated_svg = false;
 };
 
 nlohmann::json read_json(const fs::path& file) {
@@ -86,14 +87,22 @@ void run_assemble(const AssembleArgs& a) {
   const auto t_previews = diffusion::Clock::now();
   render::write_previews(scene, anim.fps, range, out);
   const double previews_ms = diffusion::ms_since(t_previews);
+  double animated_svg_ms = 0;
+  if (a.animated_svg) {
+    const auto t_svg = diffusion::Clock::now();
+    render::write_animated_svg(anim.fps, range, out);
+    animated_svg_ms = diffusion::ms_since(t_svg);
+  }
   const std::vector<render::RunStatsFile> runs = run_stats_files(out / "stats");
   nlohmann::json stats = render::merged_stats(runs, scene_file, scene, range.size(), range,
                                               previews_ms, render::range_records(out, range, {}));
   stats["ms"]["assemble"] = diffusion::ms_since(t_start);
+  if (a.animated_svg) stats["ms"]["animated_svg"] = animated_svg_ms;
   io::write_text_atomically(out / "stats.json", stats.dump(2) + "\n");
   if (!a.quiet)
-    std::fprintf(stderr, "assemble: %d frames, %s contact.png and stats.json (%zu runs) in %s\n",
-                 range.size(), scene.render.video ? "preview.mp4," : "", runs.size(),
+    std::fprintf(stderr, "assemble: %d frames, %s%s contact.png and stats.json (%zu runs) in %s\n",
+                 range.size(), scene.render.video ? "preview.mp4," : "",
+                 a.animated_svg ? " animation.svg," : "", runs.size(),
                  fs::absolute(out).string().c_str());
 }
 
@@ -106,6 +115,8 @@ void add_assemble_command(CLI::App& app) {
   cmd->add_option("outdir", args->outdir, "The folder holding every frame")->required();
   cmd->add_option("--scene", args->scene, "Scene file (default: the one farm.json names)");
   cmd->add_option("--anim", args->anim, "Saved animation (default: OUTDIR/anim.wsim)");
+  cmd->add_flag("--animated-svg", args->animated_svg,
+                "Also write animation.svg: every frame's SVG as one animated SVG");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line");
   cmd->callback([args] { run_assemble(*args); });
 }

@@ -1,7 +1,8 @@
 // `wisp render scene.json -o OUTDIR`: the main job. Simulates (or reads a saved animation),
 // projects every frame, then renders the frames in parallel to PNG and SVG, resumably, followed
-// by a preview video, a contact sheet and stats.json (apps/render/render_range.hpp,
-// render_stats.hpp). This file reads the command line, checks it and reports progress.
+// by a preview video, a contact sheet, stats.json and on request animation.svg
+// (apps/render/render_range.hpp, render_stats.hpp). This file reads the command line, checks it and
+// reports progress.
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -39,7 +40,7 @@ struct RenderArgs {
   std::string svg_style = sim::choice_name(render::SvgStyle::Embedded);
   int threads = 0;
   double max_memory_gib = 8;
-  bool force = false, quiet = false, masks = false, no_previews = false;
+  bool force = false, quiet = false, masks = false, no_previews = false, animated_svg = false;
 };
 
 // --frames A:B as (A, B); (0, -1) when not given: to the end.
@@ -169,6 +170,11 @@ void run_render(const RenderArgs& a) {
   t0 = Clock::now();
   if (!a.no_previews) render::write_previews(frames.scene, frames.anim.fps, range, out);
   ms.video_and_contact_sheet = ms_since(t0);
+  if (a.animated_svg) {
+    t0 = Clock::now();
+    render::write_animated_svg(frames.anim.fps, range, out);
+    ms.animated_svg = ms_since(t0);
+  }
   ms.total = ms_since(t_start);
   const fs::path stats = a.stats.empty() ? out / "stats.json" : fs::path(a.stats);
   if (stats.has_parent_path()) fs::create_directories(stats.parent_path());
@@ -211,6 +217,9 @@ void add_render_command(CLI::App& app) {
                   "Memory budget in GiB (default 8): fewer frames render at once above it, and a "
                   "frame that alone needs more is refused before any work")
       ->check(CLI::Range(0.001, 1e6));
+  cmd->add_flag("--animated-svg", args->animated_svg,
+                "Also write animation.svg: the frames' SVGs as one animated SVG that plays in a "
+                "browser, in the --svg-style of the frames");
   cmd->add_flag("--force", args->force, "Render frames that already exist again");
   cmd->add_flag("--masks", args->masks, "Also write each frame's hair mask (mask_NNNN.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress output");

@@ -268,6 +268,23 @@ std::vector<Vector2d> fitted_loop(const std::vector<int>& loop, const Pieces& p,
   return out;
 }
 
+// The feature's name, for its stroke's SVG id.
+const char* feature_name(sim::Feature f) {
+  switch (f) {
+    case sim::Feature::Brow:
+      return "brow";
+    case sim::Feature::Lid:
+      return "lid";
+    case sim::Feature::Iris:
+      return "iris";
+    case sim::Feature::Nose:
+      return "nose";
+    case sim::Feature::Mouth:
+      return "mouth";
+  }
+  return "line";
+}
+
 }  // namespace
 
 std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones& tones) {
@@ -304,6 +321,7 @@ std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, co
   std::vector<InkStroke> out;
   for (const sim::FaceStroke& run : runs) {
     InkStroke s;
+    s.kind = feature_name(run.feature);
     s.color = color;
     for (std::size_t i = 0; i < run.points.size(); ++i)
       if (s.points.empty() || (run.points[i] - s.points.back()).norm() > 1e-6) {

@@ -1,8 +1,9 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), ink strokes. The same picture is written as
-// a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
-// image clipped by the silhouette, or flat per-wisp gradients).
+// mask (the base is part of it), highlights, ink strokes. The same picture is written as a PNG
+// (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an image
+// clipped by the silhouette, or flat per-wisp gradients) whose layers are Inkscape layers
+// (kSvgLayers); frames' SVGs become one animated SVG in apps/render/svg_animation.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,6 +34,7 @@ struct BodyPath {
 
 // A variable-width stroke: the polyline's width at each point, in pixels.
 struct InkStroke {
+  std::string kind;  // what it draws, for its SVG id: "silhouette", "occlusion", "brow", ...
   std::vector<Eigen::Vector2d> points;
   std::vector<double> width;
   Rgb color = Rgb::Zero();
@@ -58,9 +60,25 @@ std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step = 0.25);
 // A wisp for flat SVGs: where it is in front, filled with a linear gradient along the wisp from
 // root to tip.
 struct FlatRegion {
+  int wisp = -1;  // vector::Wisp::strand, for its SVG id
   vector::HairMask area;
   Eigen::Vector2d from{0, 0}, to{0, 0};
   std::vector<std::pair<double, Rgb>> stops;  // offset in [0,1], colour
+};
+
+// A stylised highlight (vector/highlights.hpp) for flat SVGs, where the gradients along the wisps
+// do not draw it: its outline, filled with its colour where its wisp is in front (the wisp's
+// FlatRegion). PNGs and embedded SVGs have it in the hair image already.
+struct Highlight {
+  int wisp = -1;  // vector::Wisp::strand
+  std::vector<Eigen::Vector2d> ring;
+  Rgb color = Rgb::Zero();
+};
+
+// A wisp's closed outline, for the hidden debug layer of SVGs.
+struct WispOutline {
+  int wisp = -1;  // vector::Wisp::strand
+  diffusion::BezierPath path;
 };
 
 struct FramePicture {
@@ -75,10 +93,11 @@ struct FramePicture {
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
   std::vector<InkStroke> ink;  // on top of everything
-  // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
-  // --svg-style flat.
-  std::vector<diffusion::BezierPath> outlines;
+  // SVG only: the wisp outlines, in a hidden debug layer, and the per-wisp regions and highlights
+  // of --svg-style flat.
+  std::vector<WispOutline> outlines;
   std::vector<FlatRegion> flat;
+  std::vector<Highlight> highlights;  // flat SVGs only
 };
 
 // 8-bit RGBA, row-major, not premultiplied (alpha is 255 everywhere: frames are opaque).
@@ -99,6 +118,23 @@ enum class SvgStyle { Embedded, Flat };
 constexpr std::array<sim::Choice<SvgStyle>, 2> choices(SvgStyle) {
   return {{{"embedded", SvgStyle::Embedded}, {"flat", SvgStyle::Flat}}};
 }
+
+// The layers of every SVG, back to front, as Inkscape layers (<g inkscape:groupmode="layer">) with
+// these ids and labels; `hidden` ones start hidden (debug aids). Each has its writer in
+// picture_svg.cpp; a new layer is one more entry there.
+struct SvgLayer {
+  const char* id;
+  const char* label;
+  bool hidden = false;
+};
+
+// The layers' ids, back to front (for tools and tests).
+std::vector<SvgLayer> svg_layers();
+
+// Coordinates are written with as many decimals as the picture's size needs: a rounding error of at
+// most 1/65536 of its larger side (a 16-bit grid over the frame): 2 decimals at 512 to 2048 px.
+int svg_decimals(int width, int height);
+
 void write_frame_svg(const FramePicture& picture, const std::filesystem::path& path,
                      SvgStyle style);
 std::string format_frame_svg(const FramePicture& picture, SvgStyle style);

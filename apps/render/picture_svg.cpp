@@ -1,19 +1,23 @@
 // Frames as SVG: real paths for everything that is geometry (body, the hair base as a flat
 // layer of its own, hair silhouette as a clip path, ink strokes, the wisp outlines in a hidden
-// debug group) and the smooth shading either embedded as a PNG clipped by the silhouette, or, in
-// the flat style, one gradient-filled path per visible wisp region. Written by hand: a plain text
-// format whose structure (ids, groups, hidden layers) we control, which rsvg, Inkscape and browsers
-// all read.
+// debug layer) and the smooth shading either embedded as a PNG clipped by the silhouette, or, in
+// the flat style, one gradient-filled path per visible wisp region. Each layer is an Inkscape layer
+// (kLayers below, one writer each) and every element's id says what it is (`wisp-17`,
+// `ink-silhouette-3`), so an editor lists, hides and selects them by name. Written by hand: a plain
+// text format whose structure (ids, layers) we control, which rsvg,
+// Inkscape and browsers all read, and which apps/render/svg_animation.cpp reads back.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "apps/render/picture.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png_encode.hpp"
+#include "sim/body.hpp"
 
 namespace wisp::render {
 namespace {
@@ -25,49 +29,111 @@ std::string hex(const Rgb& c) {
   return buf;
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  std::string s = buf;
-  while (!s.empty() && s.back() == '0') s.pop_back();
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
+// Numbers with the picture's decimals (svg_decimals), without trailing zeros. Coordinates are
+// rounded to whole units of 10^-decimals first, so relative path steps (differences of rounded
+// points) add up exactly: no drift along a long path.
+struct Num {
+  int decimals = 3;
+  long long units(double v) const { return std::llround(v * std::pow(10.0, decimals)); }
+  std::string from_units(long long u) const {
+    std::string s = std::to_string(u < 0 ? -u : u);
+    if (decimals > 0) {
+      if (int(s.size()) <= decimals) s.insert(0, std::size_t(decimals + 1 - int(s.size())), '0');
+      s.insert(s.size() - decimals, 1, '.');
+      while (s.back() == '0') s.pop_back();
+      if (s.back() == '.') s.pop_back();
+    }
+    return u < 0 ? '-' + s : s;
+  }
+  std::string operator()(double v) const { return from_units(units(v)); }
+};
+
+// Path data in relative commands ("M x y l dx dy ... c ..."), about half the bytes of absolute
+// ones for the same rounded points.
+class PathData {
+ public:
+  explicit PathData(const Num& num) : num_(num) {}
+  void move(const Eigen::Vector2d& p) {
+    const auto [x, y] = units(p);
+    if (!out_.empty()) out_ += ' ';
+    out_ += 'M' + num_.from_units(x) + ' ' + num_.from_units(y);
+    cx_ = start_x_ = x, cy_ = start_y_ = y, last_ = 'M';
+  }
+  void line(const Eigen::Vector2d& p) {
+    command('l');
+    step(p);
+    std::tie(cx_, cy_) = units(p);
+  }
+  void cubic(const Eigen::Vector2d& c1, const Eigen::Vector2d& c2, const Eigen::Vector2d& p) {
+    command('c');
+    step(c1), out_ += ' ', step(c2), out_ += ' ', step(p);
+    std::tie(cx_, cy_) = units(p);
+  }
+  void close() {
+    out_ += 'z';
+    cx_ = start_x_, cy_ = start_y_, last_ = 'z';
+  }
+  const std::string& str() const { return out_; }
+
+ private:
+  std::pair<long long, long long> units(const Eigen::Vector2d& p) const {
+    return {num_.units(p.x()), num_.units(p.y())};
+  }
+  // The command letter once for a run of the same command (the SVG grammar repeats it).
+  void command(char c) {
+    out_ += last_ == c ? ' ' : c;
+    last_ = c;
+  }
+  void step(const Eigen::Vector2d& p) {
+    const auto [x, y] = units(p);
+    out_ += num_.from_units(x - cx_) + ' ' + num_.from_units(y - cy_);
+  }
+  const Num& num_;
+  std::string out_;
+  long long cx_ = 0, cy_ = 0, start_x_ = 0, start_y_ = 0;
+  char last_ = 0;
+};
+
+// One layer's content is written by a function of the picture; definitions it references
+// (gradients, clip paths) go to `defs`.
+struct LayerText {
+  std::ostringstream defs, body;
+};
+struct Writer {
+  const FramePicture& pic;
+  SvgStyle style;
+  Num num;
+};
+
+void ring_path(PathData& d, const std::vector<Eigen::Vector2d>& ring) {
+  if (ring.empty()) return;
+  d.move(ring[0]);
+  for (size_t i = 1; i < ring.size(); ++i) d.line(ring[i]);
+  d.close();
 }
 
-void ring_path(std::ostringstream& o, const std::vector<Eigen::Vector2d>& ring) {
-  for (size_t i = 0; i < ring.size(); ++i)
-    o << (i ? " L" : "M") << num(ring[i].x()) << ' ' << num(ring[i].y());
-  if (!ring.empty()) o << " Z";
-}
-
-// Path data "M x y C ... C ... [Z]" of a Bezier path with at least one piece; `close` closes it
-// (a filled region's loop).
-std::string bezier_path(const diffusion::BezierPath& path, bool close = false) {
-  std::ostringstream o;
-  o << 'M' << num(path.points[0].x()) << ' ' << num(path.points[0].y());
+// A Bezier path with at least one piece; `close` closes it (a filled region's loop).
+void bezier_path(PathData& d, const diffusion::BezierPath& path, bool close = false) {
+  d.move(path.points[0]);
   for (int i = 0; i < path.piece_count(); ++i) {
     const diffusion::Cubic c = path.piece(i);
-    o << " C" << num(c[1].x()) << ' ' << num(c[1].y()) << ' ' << num(c[2].x()) << ' '
-      << num(c[2].y()) << ' ' << num(c[3].x()) << ' ' << num(c[3].y());
+    d.cubic(c[1], c[2], c[3]);
   }
-  if (close) o << " Z";
-  return o.str();
+  if (close) d.close();
+}
+std::string bezier_path(const Num& num, const diffusion::BezierPath& path) {
+  PathData d(num);
+  bezier_path(d, path);
+  return d.str();
 }
 
-std::string mask_path(const vector::MaskPolygon& poly) {
-  std::ostringstream o;
-  ring_path(o, poly.outer);
-  for (const auto& hole : poly.holes) {
-    o << ' ';
-    ring_path(o, hole);
+std::string mask_path(const Num& num, const vector::HairMask& mask) {
+  PathData d(num);
+  for (const vector::MaskPolygon& poly : mask.polygons) {
+    ring_path(d, poly.outer);
+    for (const auto& hole : poly.holes) ring_path(d, hole);
   }
-  return o.str();
-}
-
-std::string mask_path(const vector::HairMask& mask) {
-  std::string out;
-  for (const vector::MaskPolygon& poly : mask.polygons) out += mask_path(poly) + ' ';
-  return out;
+  return d.str();
 }
 
 std::string base64(const std::vector<unsigned char>& bytes) {
@@ -85,20 +151,22 @@ std::string base64(const std::vector<unsigned char>& bytes) {
   return out;
 }
 
-std::string png_data_uri(const diffusion::Image& img) {
+// The pixels of `img` in the box [x0, x1) x [y0, y1) as a PNG data URI.
+std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, int y1) {
   const size_t n = size_t(img.width) * img.height;
-  std::vector<std::uint8_t> rgb(3 * n);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c)
-      rgb[3 * i + c] = static_cast<std::uint8_t>(
-          std::lround(std::clamp(img.planes[c * n + i], 0.0f, 1.0f) * 255));
-  const std::vector<std::uint8_t> png =
-      io::encode_png({rgb.data(), img.width, img.height, 3, size_t(img.width) * 3});
+  const int w = x1 - x0, h = y1 - y0;
+  std::vector<std::uint8_t> rgb(3 * size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        rgb[3 * (size_t(y) * w + x) + c] = static_cast<std::uint8_t>(std::lround(
+            std::clamp(img.planes[c * n + size_t(y + y0) * img.width + x + x0], 0.0f, 1.0f) * 255));
+  const std::vector<std::uint8_t> png = io::encode_png({rgb.data(), w, h, 3, size_t(w) * 3});
   return "data:image/png;base64," + base64(png);
 }
 
 // A variable-width stroke as one filled path: the left offsets forward, the right ones back.
-std::string ink_outline(const InkStroke& ink) {
+std::string ink_outline(const Num& num, const InkStroke& ink) {
   const size_t n = ink.points.size();
   std::vector<Eigen::Vector2d> left, right;
   for (size_t i = 0; i < n; ++i) {
@@ -110,98 +178,270 @@ std::string ink_outline(const InkStroke& ink) {
     left.push_back(ink.points[i] + nrm);
     right.push_back(ink.points[i] - nrm);
   }
-  std::ostringstream o;
+  PathData d(num);
+  std::reverse(right.begin(), right.end());
   if (ink.closed) {
-    ring_path(o, left);
-    o << ' ';
-    std::reverse(right.begin(), right.end());
-    ring_path(o, right);
+    ring_path(d, left);
+    ring_path(d, right);
   } else {
-    std::reverse(right.begin(), right.end());
     left.insert(left.end(), right.begin(), right.end());
-    ring_path(o, left);
+    ring_path(d, left);
   }
-  return o.str();
+  return d.str();
 }
 
-// A group of ink strokes.
-void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStroke>& strokes) {
-  o << " <g id=\"" << id
-    << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+// Ink strokes, each with the id `prefix`-kind-n (n counting strokes of that kind from 1): one
+// path, or a group of its constant-width pieces.
+void ink_strokes(std::ostringstream& o, const Num& num, const std::string& prefix,
+                 const std::vector<InkStroke>& strokes) {
+  std::map<std::string, int> count;
   for (const InkStroke& ink : strokes) {
+    const std::string kind = ink.kind.empty() ? "stroke" : ink.kind;
+    const std::string id = prefix + '-' + kind + '-' + std::to_string(++count[kind]);
     if (!ink.curve.points.empty()) {
       // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
       const std::string color = hex(ink.color);
-      for (const InkPiece& piece : ink_pieces(ink)) {
-        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color << "\" stroke-width=\""
-          << num(piece.width) << "\"/>\n";
+      const std::vector<InkPiece> pieces = ink_pieces(ink);
+      if (pieces.empty()) continue;
+      if (pieces.size() == 1) {
+        o << "<path id=\"" << id << "\" d=\"" << bezier_path(num, pieces[0]) << "\" stroke=\""
+          << color << "\" stroke-width=\"" << num(pieces[0].width) << "\"/>\n";
+        continue;
       }
+      o << "<g id=\"" << id << "\" stroke=\"" << color << "\">";
+      for (const InkPiece& p : pieces)
+        o << "<path d=\"" << bezier_path(num, p) << "\" stroke-width=\"" << num(p.width) << "\"/>";
+      o << "</g>\n";
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
-      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
-        << "\" stroke=\"none\"/>\n";
+      o << "<path id=\"" << id << "\" d=\"" << ink_outline(num, ink) << "\" fill=\""
+        << hex(ink.color) << "\" stroke=\"none\"/>\n";
     }
   }
-  o << " </g>\n";
 }
+
+const char* part_name(int part) {
+  switch (part) {
+    case sim::kBodyHead:
+      return "head";
+    case sim::kBodyNeck:
+      return "neck";
+    case sim::kBodyTorso:
+      return "torso";
+    case sim::kBodyArm:
+      return "arm";
+  }
+  return "part";
+}
+
+void background_layer(const Writer& w, LayerText& out) {
+  out.body << "<rect id=\"background-fill\" width=\"" << w.pic.width << "\" height=\""
+           << w.pic.height << "\" fill=\"" << hex(w.pic.background) << "\"/>\n";
+}
+
+// One path per tone region (apps/render/body_paths.hpp), nonzero fill: no interior edges; then
+// the face's lines, on the head and under the hair.
+void body_layer(const Writer& w, LayerText& out) {
+  std::map<std::string, int> count;
+  for (const BodyPath& region : w.pic.body) {
+    const std::string name = std::string(part_name(region.part)) + (region.shadow ? "-shadow" : "");
+    PathData d(w.num);
+    for (const auto& loop : region.loops)
+      if (loop.size() >= 4) bezier_path(d, {loop}, true);
+    out.body << "<path id=\"" << name << '-' << ++count[name] << "\" d=\"" << d.str()
+             << "\" fill=\"" << hex(region.color) << "\"/>\n";
+  }
+  if (w.pic.face.empty()) return;
+  out.body << "<g id=\"face\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  ink_strokes(out.body, w.num, "face", w.pic.face);
+  out.body << "</g>\n";
+}
+
+void hair_base_layer(const Writer& w, LayerText& out) {
+  if (!w.pic.base.polygons.empty())
+    out.body << "<path id=\"hair-base-fill\" fill-rule=\"evenodd\" d=\""
+             << mask_path(w.num, w.pic.base) << "\" fill=\"" << hex(w.pic.base_color) << "\"/>\n";
+}
+
+// The pixel box holding the mask (grown by a pixel for anti-aliasing), within the picture.
+std::array<int, 4> mask_box(const vector::HairMask& mask, int width, int height) {
+  double x0 = width, y0 = height, x1 = 0, y1 = 0;
+  for (const vector::MaskPolygon& poly : mask.polygons)
+    for (const Eigen::Vector2d& p : poly.outer) {
+      x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y());
+      x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+    }
+  return {
+      std::clamp(int(std::floor(x0)) - 1, 0, width), std::clamp(int(std::floor(y0)) - 1, 0, height),
+      std::clamp(int(std::ceil(x1)) + 1, 0, width), std::clamp(int(std::ceil(y1)) + 1, 0, height)};
+}
+
+// The gradient stops that linear interpolation between their neighbours does not reproduce to
+// within half a colour level (all that hex colours hold): a wisp of one colour but for its
+// highlight needs a few stops, not all of them.
+std::vector<std::pair<double, Rgb>> needed_stops(const std::vector<std::pair<double, Rgb>>& stops) {
+  if (stops.size() <= 2) return stops;
+  std::vector<std::pair<double, Rgb>> out = {stops.front()};
+  const auto reproduced = [&](std::size_t from, std::size_t to) {
+    const auto& [t0, c0] = stops[from];
+    const auto& [t1, c1] = stops[to];
+    for (std::size_t i = from + 1; i < to; ++i) {
+      const double a = t1 > t0 ? (stops[i].first - t0) / (t1 - t0) : 0;
+      const Rgb lerp = c0 + float(a) * (c1 - c0);
+      if ((lerp - stops[i].second).cwiseAbs().maxCoeff() > 0.5f / 255) return false;
+    }
+    return true;
+  };
+  std::size_t kept = 0;
+  for (std::size_t i = 1; i + 1 < stops.size(); ++i)
+    if (!reproduced(kept, i + 1)) out.push_back(stops[i]), kept = i;
+  out.push_back(stops.back());
+  return out;
+}
+
+// Embedded: the shading where the hair is (the silhouette's pixel box) as an image clipped by
+// the silhouette. Flat: each wisp's front region with its gradient, over an underlay: the hair
+// (the silhouette but for the hair base's part) in the wisps' mean colour, so that where two
+// regions meet, the pixels they share blend with hair colour rather than the layers below
+// (a viewer anti-aliases each path on its own). The underlay stops a pixel short of the
+// silhouette (masked by its own outline stroked 2 px wide): its partial pixels along the
+// silhouette would add to the wisps' own there and grow the silhouette by about half a pixel, as
+// a stroke around each region would.
+void hair_layer(const Writer& w, LayerText& out) {
+  const FramePicture& pic = w.pic;
+  if (w.style == SvgStyle::Embedded) {
+    const std::string silhouette = mask_path(w.num, pic.mask);
+    if (pic.hair.planes.empty() || silhouette.empty()) return;
+    const auto [x0, y0, x1, y1] = mask_box(pic.mask, pic.hair.width, pic.hair.height);
+    if (x1 <= x0 || y1 <= y0) return;
+    out.defs << "<clipPath id=\"hair-silhouette\" clipPathUnits=\"userSpaceOnUse\"><path "
+                "clip-rule=\"evenodd\" d=\""
+             << silhouette << "\"/></clipPath>\n";
+    // The image's pixels scale with the frame when the hair was solved at another size.
+    const double sx = double(pic.width) / pic.hair.width, sy = double(pic.height) / pic.hair.height;
+    out.body << "<image id=\"hair-shading\" x=\"" << w.num(x0 * sx) << "\" y=\"" << w.num(y0 * sy)
+             << "\" width=\"" << w.num((x1 - x0) * sx) << "\" height=\"" << w.num((y1 - y0) * sy)
+             << "\" preserveAspectRatio=\"none\" clip-path=\"url(#hair-silhouette)\" "
+             << "xlink:href=\"" << png_data_uri(pic.hair, x0, y0, x1, y1) << "\"/>\n";
+    return;
+  }
+  Rgb mean = Rgb::Zero();
+  int n = 0;
+  for (const FlatRegion& r : pic.flat)
+    for (const auto& stop : r.stops) mean += stop.second, ++n;
+  if (n > 0) {
+    out.defs << "<path id=\"hair-shape\" fill-rule=\"evenodd\" d=\"" << mask_path(w.num, pic.mask)
+             << ' ' << mask_path(w.num, pic.base) << "\"/>\n"
+             << "<mask id=\"hair-inside\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\""
+             << pic.width << "\" height=\"" << pic.height
+             << "\"><use xlink:href=\"#hair-shape\" fill=\"#fff\" stroke=\"#000\" "
+                "stroke-width=\"2\"/></mask>\n";
+    out.body << "<use id=\"hair-underlay\" xlink:href=\"#hair-shape\" fill=\""
+             << hex(mean / float(n)) << "\" mask=\"url(#hair-inside)\"/>\n";
+  }
+  for (const FlatRegion& r : pic.flat) {
+    const std::string id = "wisp-" + std::to_string(r.wisp);
+    out.defs << "<linearGradient id=\"" << id
+             << "-gradient\" gradientUnits=\"userSpaceOnUse\" x1=\"" << w.num(r.from.x())
+             << "\" y1=\"" << w.num(r.from.y()) << "\" x2=\"" << w.num(r.to.x()) << "\" y2=\""
+             << w.num(r.to.y()) << "\">";
+    for (const auto& [offset, c] : needed_stops(r.stops))
+      out.defs << "<stop offset=\"" << Num{4}(offset) << "\" stop-color=\"" << hex(c) << "\"/>";
+    out.defs << "</linearGradient>\n";
+    out.body << "<path id=\"" << id << "\" fill-rule=\"evenodd\" d=\"" << mask_path(w.num, r.area)
+             << "\" fill=\"url(#" << id << "-gradient)\"/>\n";
+  }
+}
+
+// Flat SVGs: each highlight filled with its colour, clipped to where its wisp is in front (a copy
+// of its region's path: clip paths that only use the hair layer's paths would tie the layers
+// together, and animation.svg could no longer share or rename them apart); in embedded SVGs the
+// shading image holds them.
+void highlights_layer(const Writer& w, LayerText& out) {
+  std::map<int, const FlatRegion*> regions;
+  for (const FlatRegion& r : w.pic.flat) regions[r.wisp] = &r;
+  std::map<int, int> count;
+  for (const Highlight& h : w.pic.highlights) {
+    const auto region = regions.find(h.wisp);
+    if (h.ring.size() < 3 || region == regions.end()) continue;
+    const std::string front = "wisp-" + std::to_string(h.wisp) + "-front";
+    if (count[h.wisp] == 0)
+      out.defs << "<clipPath id=\"" << front << "\" clipPathUnits=\"userSpaceOnUse\"><path "
+               << "clip-rule=\"evenodd\" d=\"" << mask_path(w.num, region->second->area)
+               << "\"/></clipPath>\n";
+    PathData d(w.num);
+    ring_path(d, h.ring);
+    out.body << "<path id=\"highlight-" << h.wisp << '-' << ++count[h.wisp] << "\" d=\"" << d.str()
+             << "\" fill=\"" << hex(h.color) << "\" clip-path=\"url(#" << front << ")\"/>\n";
+  }
+}
+
+void ink_layer(const Writer& w, LayerText& out) {
+  ink_strokes(out.body, w.num, "ink", w.pic.ink);
+}
+
+void outlines_layer(const Writer& w, LayerText& out) {
+  for (const WispOutline& outline : w.pic.outlines)
+    if (outline.path.piece_count() > 0)
+      out.body << "<path id=\"outline-" << outline.wisp << "\" d=\""
+               << bezier_path(w.num, outline.path) << "\"/>\n";
+}
+
+// The layers, back to front: id, label, whether hidden, attributes its content inherits, writer.
+struct LayerEntry {
+  SvgLayer layer;
+  const char* attributes;
+  void (*write)(const Writer&, LayerText&);
+};
+const LayerEntry kLayers[] = {
+    {{"background", "background"}, "", background_layer},
+    {{"body", "body"}, " stroke=\"none\"", body_layer},
+    {{"hair-base", "hair base"}, "", hair_base_layer},
+    {{"hair", "hair"}, "", hair_layer},
+    {{"highlights", "highlights"}, "", highlights_layer},
+    {{"ink", "ink"},
+     " fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
+     ink_layer},
+    {{"wisp-outlines", "wisp outlines (debug)", true},
+     " fill=\"none\" stroke=\"#ff00ff\" stroke-width=\"0.5\"",
+     outlines_layer},
+};
 
 }  // namespace
 
+std::vector<SvgLayer> svg_layers() {
+  std::vector<SvgLayer> out;
+  for (const LayerEntry& e : kLayers) out.push_back(e.layer);
+  return out;
+}
+
+int svg_decimals(int width, int height) {
+  const double tolerance = std::max({width, height, 1}) / 65536.0;
+  int d = 0;
+  while (d < 6 && 0.5 * std::pow(10.0, -d) > tolerance) ++d;
+  return d;
+}
+
 std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
+  const Writer w{pic, style, {svg_decimals(pic.width, pic.height)}};
+  std::ostringstream defs, layers;
+  for (const LayerEntry& e : kLayers) {
+    LayerText t;
+    e.write(w, t);
+    defs << t.defs.str();
+    layers << "<g id=\"" << e.layer.id << "\" inkscape:groupmode=\"layer\" inkscape:label=\""
+           << e.layer.label << '"' << (e.layer.hidden ? " style=\"display:none\"" : "")
+           << e.attributes << ">\n"
+           << t.body.str() << "</g>\n";
+  }
   std::ostringstream o;
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
-    << "width=\"" << pic.width << "\" height=\"" << pic.height << "\" viewBox=\"0 0 " << pic.width
-    << ' ' << pic.height << "\">\n";
-  o << " <rect id=\"background\" width=\"" << pic.width << "\" height=\"" << pic.height
-    << "\" fill=\"" << hex(pic.background) << "\"/>\n";
-  // One path per tone region (apps/render/body_paths.hpp), nonzero fill: no interior edges.
-  o << " <g id=\"body\" fill-rule=\"nonzero\" stroke=\"none\">\n";
-  for (const BodyPath& region : pic.body) {
-    o << "  <path d=\"";
-    for (const auto& loop : region.loops)
-      if (loop.size() >= 4) o << bezier_path({loop}, true) << ' ';
-    o << "\" fill=\"" << hex(region.color) << "\"/>\n";
-  }
-  o << " </g>\n";
-  ink_group(o, "face", pic.face);  // on the head, under the hair
-
-  if (!pic.base.polygons.empty())
-    o << " <g id=\"hair-base\" fill-rule=\"evenodd\">\n  <path d=\"" << mask_path(pic.base)
-      << "\" fill=\"" << hex(pic.base_color) << "\"/>\n </g>\n";
-
-  const std::string silhouette = mask_path(pic.mask);
-  if (style == SvgStyle::Embedded) {
-    o << " <defs>\n  <clipPath id=\"hair-silhouette\" clipPathUnits=\"userSpaceOnUse\">\n"
-      << "   <path clip-rule=\"evenodd\" d=\"" << silhouette << "\"/>\n  </clipPath>\n </defs>\n";
-    if (!pic.hair.planes.empty() && !silhouette.empty())
-      o << " <image id=\"hair\" x=\"0\" y=\"0\" width=\"" << pic.width << "\" height=\""
-        << pic.height << "\" preserveAspectRatio=\"none\" clip-path=\"url(#hair-silhouette)\" "
-        << "xlink:href=\"" << png_data_uri(pic.hair) << "\"/>\n";
-  } else {
-    o << " <defs>\n";
-    for (size_t i = 0; i < pic.flat.size(); ++i) {
-      const FlatRegion& r = pic.flat[i];
-      o << "  <linearGradient id=\"wisp" << i << "\" gradientUnits=\"userSpaceOnUse\" x1=\""
-        << num(r.from.x()) << "\" y1=\"" << num(r.from.y()) << "\" x2=\"" << num(r.to.x())
-        << "\" y2=\"" << num(r.to.y()) << "\">";
-      for (const auto& [offset, c] : r.stops)
-        o << "<stop offset=\"" << num(offset) << "\" stop-color=\"" << hex(c) << "\"/>";
-      o << "</linearGradient>\n";
-    }
-    o << " </defs>\n <g id=\"hair\" fill-rule=\"evenodd\">\n";
-    for (size_t i = 0; i < pic.flat.size(); ++i)
-      o << "  <path d=\"" << mask_path(pic.flat[i].area) << "\" fill=\"url(#wisp" << i
-        << ")\" stroke=\"url(#wisp" << i << ")\" stroke-width=\"0.5\"/>\n";
-    o << " </g>\n";
-  }
-
-  o << " <g id=\"wisp-outlines\" style=\"display:none\" fill=\"none\" stroke=\"#ff00ff\" "
-       "stroke-width=\"0.5\">\n";
-  for (const diffusion::BezierPath& outline : pic.outlines)
-    if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
-  o << " </g>\n";
-  ink_group(o, "ink", pic.ink);
-  o << "</svg>\n";
+    << "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" "
+    << "xmlns:sodipodi=\"http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd\" width=\"" << pic.width
+    << "\" height=\"" << pic.height << "\" viewBox=\"0 0 " << pic.width << ' ' << pic.height
+    << "\">\n<defs>\n"
+    << defs.str() << "</defs>\n"
+    << layers.str() << "</svg>\n";
   return o.str();
 }
 

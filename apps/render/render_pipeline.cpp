@@ -33,6 +33,7 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
     const vector::Wisp& wisp = wisps[w];
     const std::vector<diffusion::ColorStop>& inside = curves[c].left;
     FlatRegion r;
+    r.wisp = wisp.strand;
     r.area = arrangement.front_regions[w];
     r.from = wisp.centre.points.front();
     r.to = wisp.centre.points.back();
@@ -60,6 +61,7 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 // cubics' ends and thirds.
 InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
   InkStroke s;
+  s.kind = c.silhouette ? "silhouette" : "occlusion";
   s.color = style.color;
   s.closed = c.closed();
   s.curve.points = c.points;
@@ -140,9 +142,13 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   pic.mask = r.arrangement.mask;
   pic.base = r.arrangement.base_region;
   pic.base_color = base_color;
-  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.outline.points});
-  if (setup.flat_regions)
+  for (const vector::Wisp& w : r.wisps) pic.outlines.push_back({w.strand, {w.outline.points}});
+  if (setup.flat_regions) {
     pic.flat = flat_regions(r.wisps, r.arrangement, r.curves, hc.outline_of, setup.style);
+    for (vector::HighlightRing& h : hc.highlights)
+      pic.highlights.push_back(
+          {r.wisps[h.wisp].strand, std::move(h.ring), setup.style.specular.color});
+  }
   if (setup.style.ink.enabled()) {
     t0 = Clock::now();
     r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);

@@ -98,7 +98,7 @@ void prepare_frame_folder(const fs::path& folder, int first, int last) {
     throw std::runtime_error(folder.string() + ": cannot create the output folder");
   // io::write_atomically's temporaries: ".frame_0005.partial-<pid>.png", ".preview.partial-..".
   const std::regex frame(R"(\.(frame|mask)_(\d+)\.partial-(\d+)\.(png|svg|json))");
-  const std::regex other(R"(\.[a-z]+\.partial-(\d+)\.(mp4|png|json))");
+  const std::regex other(R"(\.[a-z]+\.partial-(\d+)\.(mp4|png|json|svg))");
   for (const fs::path& dir : {folder, folder / ".stats"})
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
       std::smatch m;
@@ -208,6 +208,12 @@ void write_previews(const io::Scene& scene, double fps, FrameRange range, const 
   io::ContactSheetOptions sheet;
   sheet.columns = scene.render.contact_sheet_columns;
   io::write_contact_sheet(folder / "contact.png", pngs, numbers, sheet);
+}
+
+SvgAnimationStats write_animated_svg(double fps, FrameRange range, const fs::path& folder) {
+  std::vector<fs::path> svgs;
+  for (int k = range.first; k < range.last; ++k) svgs.push_back(folder / frame_file_name(k, "svg"));
+  return write_svg_animation(svgs, fps, folder / "animation.svg");
 }
 
 }  // namespace wisp::render

@@ -20,6 +20,7 @@
 #include "apps/render/picture.hpp"
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
+#include "apps/render/svg_animation.hpp"
 
 namespace wisp::render {
 
@@ -96,6 +97,11 @@ std::vector<nlohmann::json> range_records(const std::filesystem::path& folder, F
 // of `range` in `folder`, those rendered by earlier runs (or other machines) included.
 void write_previews(const io::Scene& scene, double fps, FrameRange range,
                     const std::filesystem::path& folder);
+
+// animation.svg in `folder`: the SVGs of every frame of `range` there as one animated SVG at `fps`
+// (apps/render/svg_animation.hpp), those rendered by earlier runs (or other machines) included.
+SvgAnimationStats write_animated_svg(double fps, FrameRange range,
+                                     const std::filesystem::path& folder);
 
 // The frames of `range` whose PNG or SVG is missing from `folder`, in order.
 std::vector<int> missing_frames(const std::filesystem::path& folder, FrameRange range);

@@ -24,6 +24,7 @@ struct RunTimes {
   double simulate_and_project = 0;
   double frames = 0;                   // rendering and writing the frames
   double video_and_contact_sheet = 0;  // the previews
+  double animated_svg = 0;             // animation.svg (--animated-svg)
   double total = 0;
 };
 

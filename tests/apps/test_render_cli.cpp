@@ -74,13 +74,13 @@ TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "
     REQUIRE(mask.cols == 256);
     CHECK(cv::countNonZero(mask > 127) > 2000);  // there is hair
 
-    // The SVG parses and rasterises as a whole, and its hair layer (shown alone: background,
-    // body and face hidden) covers the region of the PNG's hair mask.
+    // The SVG parses and rasterises as a whole, and its hair layer (shown alone: the background
+    // and body layers hidden) covers the region of the PNG's hair mask.
     const std::string svg = frame(dir, k, "frame_", "svg");
     REQUIRE(run_command("rsvg-convert " + svg + " -o " + dir + "/svg_all.png").exit_code == 0);
     CHECK(cv::imread(dir + "/svg_all.png").cols == 256);
     std::string text = read_file(svg);
-    for (const std::string id : {"<rect id=\"background\"", "<g id=\"body\"", "<g id=\"face\""})
+    for (const std::string id : {"<g id=\"background\"", "<g id=\"body\""})
       text.replace(text.find(id), id.size(), id + " style=\"display:none\"");
     std::ofstream(dir + "/hair_only.svg") << text;
     const std::string svg_hair = dir + "/svg_hair.png";
