@@ -3,7 +3,7 @@
 // mask (the base is part of it), highlights, ink strokes. The same picture is written as a PNG
 // (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an image
 // clipped by the silhouette, or flat per-wisp gradients) whose layers are Inkscape layers
-// (kSvgLayers); frames' SVGs become one animated SVG in apps/render/svg_animation.hpp.
+// (svg_layers()); frames' SVGs become one animated SVG in apps/render/svg_animation.hpp.
 #pragma once
 
 #include <Eigen/Core>

@@ -338,3 +338,30 @@ TEST_CASE("SVG layers are Inkscape layers with ids that say what things are, eac
       }
   }
 }
+
+TEST_CASE("wisp assemble --animated-svg writes the animation wisp render --animated-svg writes",
+          "[cli][svg]") {
+  const std::string& scene = scene_folder();
+  const std::string dir = fresh_folder("svg_assemble");
+  const std::string common = kWisp + " render " + scene + "/scene.json --anim " + scene +
+                             "/anim.wsim --size 64x64 -q --no-previews -o " + dir;
+  // Two ranges, as two machines would render them, then assembled.
+  for (const char* range : {"0:10", "10:19"}) {
+    const auto r = run_command(common + " --frames " + range + " --stats " + dir + "/stats/" +
+                               std::string(range).substr(0, 1) + ".json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+  }
+  const auto a = run_command(kWisp + " assemble " + dir + " --scene " + scene +
+                             "/scene.json --anim " + scene + "/anim.wsim --animated-svg -q");
+  INFO(a.output);
+  REQUIRE(a.exit_code == 0);
+  const std::string assembled = read_file(dir + "/animation.svg");
+  // The same frames rendered in one go.
+  const auto r = run_command(common + "/whole --animated-svg");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(assembled.size() > 1000);
+  CHECK(assembled == read_file(dir + "/whole/animation.svg"));
+  CHECK(assembled.find("keyTimes=\"0;0.0526316\"") != std::string::npos);  // 19 frames
+}
