@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -97,6 +98,63 @@ std::string png_data_uri(const diffusion::Image& img) {
   return "data:image/png;base64," + base64(png);
 }
 
+// The reblurred hair (premultiplied planes, FramePicture::blurred_hair) as an RGBA PNG: its alpha
+// is the softened mask, so the image needs no clip path.
+std::string rgba_data_uri(const std::vector<float>& planes, int width, int height) {
+  const size_t n = size_t(width) * height;
+  std::vector<std::uint8_t> rgba(4 * n);
+  const auto byte = [](float v) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const float a = planes[3 * n + i];
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = byte(a > 0 ? planes[c * n + i] / a : 0.0f);
+    rgba[4 * i + 3] = byte(a);
+  }
+  const std::vector<std::uint8_t> png =
+      io::encode_png({rgba.data(), width, height, 4, 4 * n / height});
+  return "data:image/png;base64," + base64(png);
+}
+
+// Vector layers under a blur map. SVG has no spatially varying blur, so each path (a flat wisp
+// region, the hair base, an ink piece) takes one Gaussian: the blur map's mean at its points,
+// rounded to a half-octave level (0.5 px * 2^(k/2)); paths of one level share one group with
+// one feGaussianBlur filter. Below kSharpest a path stays sharp (level -1).
+constexpr double kSharpest = 0.35;
+
+double mean_blur(const FramePicture& pic, const std::vector<Eigen::Vector2d>& points) {
+  if (pic.blur.empty() || points.empty()) return 0;
+  double sum = 0;
+  for (const Eigen::Vector2d& p : points) {
+    const int x = std::clamp(int(p.x()), 0, pic.width - 1);
+    const int y = std::clamp(int(p.y()), 0, pic.height - 1);
+    sum += pic.blur[size_t(y) * pic.width + x];
+  }
+  return sum / double(points.size());
+}
+
+int blur_level(double sigma) {
+  return sigma < kSharpest ? -1 : std::max(0, int(std::lround(2 * std::log2(sigma / 0.5))));
+}
+
+double level_sigma(int level) {
+  return 0.5 * std::pow(2.0, 0.5 * level);
+}
+
+std::vector<Eigen::Vector2d> area_points(const vector::HairMask& area) {
+  std::vector<Eigen::Vector2d> out;
+  for (const vector::MaskPolygon& p : area.polygons)
+    out.insert(out.end(), p.outer.begin(), p.outer.end());
+  return out;
+}
+
+// Opens a group with the level's filter (nothing for sharp paths); returns its closing tag.
+std::string open_level(std::ostringstream& o, int level, const char* indent) {
+  if (level < 0) return "";
+  o << indent << "<g filter=\"url(#blur" << level << ")\">\n";
+  return std::string(indent) + "</g>\n";
+}
+
 // A variable-width stroke as one filled path: the left offsets forward, the right ones back.
 std::string ink_outline(const InkStroke& ink) {
   const size_t n = ink.points.size();
@@ -124,24 +182,46 @@ std::string ink_outline(const InkStroke& ink) {
   return o.str();
 }
 
-// A group of ink strokes.
-void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStroke>& strokes) {
+// A group of ink strokes; with `blur`, each piece in the group of its blur level.
+void ink_group(std::ostringstream& o, const char* id, const std::vector<InkStroke>& strokes,
+               const FramePicture* blur = nullptr) {
   o << " <g id=\"" << id
     << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  std::map<int, std::ostringstream> levels;
   for (const InkStroke& ink : strokes) {
     if (!ink.curve.points.empty()) {
       // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
       const std::string color = hex(ink.color);
       for (const InkPiece& piece : ink_pieces(ink)) {
-        o << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color << "\" stroke-width=\""
-          << num(piece.width) << "\"/>\n";
+        const int level = blur ? blur_level(mean_blur(*blur, piece.points)) : -1;
+        levels[level] << "  <path d=\"" << bezier_path(piece) << "\" stroke=\"" << color
+                      << "\" stroke-width=\"" << num(piece.width) << "\"/>\n";
       }
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
-      o << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
-        << "\" stroke=\"none\"/>\n";
+      const int level = blur ? blur_level(mean_blur(*blur, ink.points)) : -1;
+      levels[level] << "  <path d=\"" << ink_outline(ink) << "\" fill=\"" << hex(ink.color)
+                    << "\" stroke=\"none\"/>\n";
     }
   }
+  for (auto& [level, paths] : levels) {
+    const std::string close = open_level(o, level, "  ");
+    o << paths.str() << close;
+  }
   o << " </g>\n";
+}
+
+// The filters of the blur levels that a blurred picture's vector layers use (all of them, a
+// line each: unused ones cost nothing).
+void blur_filters(std::ostringstream& o, const FramePicture& pic) {
+  if (pic.blur.empty()) return;
+  const float largest = *std::max_element(pic.blur.begin(), pic.blur.end());
+  o << " <defs>\n";
+  for (int level = 0; level <= blur_level(largest); ++level)
+    o << "  <filter id=\"blur" << level
+      << "\" filterUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"" << pic.width << "\" height=\""
+      << pic.height << "\"><feGaussianBlur stdDeviation=\"" << num(level_sigma(level))
+      << "\"/></filter>\n";
+  o << " </defs>\n";
 }
 
 }  // namespace
@@ -164,13 +244,22 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   }
   o << " </g>\n";
   ink_group(o, "face", pic.face);  // on the head, under the hair
+  blur_filters(o, pic);
 
-  if (!pic.base.polygons.empty())
-    o << " <g id=\"hair-base\" fill-rule=\"evenodd\">\n  <path d=\"" << mask_path(pic.base)
-      << "\" fill=\"" << hex(pic.base_color) << "\"/>\n </g>\n";
+  if (!pic.base.polygons.empty()) {
+    o << " <g id=\"hair-base\" fill-rule=\"evenodd\">\n";
+    const std::string close =
+        open_level(o, blur_level(mean_blur(pic, area_points(pic.base))), "  ");
+    o << "  <path d=\"" << mask_path(pic.base) << "\" fill=\"" << hex(pic.base_color) << "\"/>\n"
+      << close << " </g>\n";
+  }
 
   const std::string silhouette = mask_path(pic.mask);
-  if (style == SvgStyle::Embedded) {
+  if (style == SvgStyle::Embedded && !pic.blurred_hair.empty()) {
+    o << " <image id=\"hair\" x=\"0\" y=\"0\" width=\"" << pic.width << "\" height=\"" << pic.height
+      << "\" preserveAspectRatio=\"none\" xlink:href=\""
+      << rgba_data_uri(pic.blurred_hair, pic.width, pic.height) << "\"/>\n";
+  } else if (style == SvgStyle::Embedded) {
     o << " <defs>\n  <clipPath id=\"hair-silhouette\" clipPathUnits=\"userSpaceOnUse\">\n"
       << "   <path clip-rule=\"evenodd\" d=\"" << silhouette << "\"/>\n  </clipPath>\n </defs>\n";
     if (!pic.hair.planes.empty() && !silhouette.empty())
@@ -189,9 +278,16 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
       o << "</linearGradient>\n";
     }
     o << " </defs>\n <g id=\"hair\" fill-rule=\"evenodd\">\n";
+    // Front regions do not overlap, so grouping them by blur level keeps the picture.
+    std::map<int, std::ostringstream> levels;
     for (size_t i = 0; i < pic.flat.size(); ++i)
-      o << "  <path d=\"" << mask_path(pic.flat[i].area) << "\" fill=\"url(#wisp" << i
-        << ")\" stroke=\"url(#wisp" << i << ")\" stroke-width=\"0.5\"/>\n";
+      levels[blur_level(mean_blur(pic, area_points(pic.flat[i].area)))]
+          << "  <path d=\"" << mask_path(pic.flat[i].area) << "\" fill=\"url(#wisp" << i
+          << ")\" stroke=\"url(#wisp" << i << ")\" stroke-width=\"0.5\"/>\n";
+    for (auto& [level, paths] : levels) {
+      const std::string close = open_level(o, level, "  ");
+      o << paths.str() << close;
+    }
     o << " </g>\n";
   }
 
@@ -200,7 +296,7 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   for (const diffusion::BezierPath& outline : pic.outlines)
     if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
   o << " </g>\n";
-  ink_group(o, "ink", pic.ink);
+  ink_group(o, "ink", pic.ink, pic.blur.empty() ? nullptr : &pic);
   o << "</svg>\n";
   return o.str();
 }
