@@ -238,7 +238,7 @@ Surface draw(const FramePicture& pic) {
   draw_ink(c, pic.face);  // on the head, under the hair
   if (!pic.blurred_hair.empty()) {
     paint_layer(c, planes_surface(pic.blurred_hair, pic.width, pic.height).get());
-    paint_layer(c, blurred_ink(pic).get());
+    if (!pic.ink.empty()) paint_layer(c, blurred_ink(pic).get());
     cairo_surface_flush(surface.get());
     return surface;
   }
