@@ -129,6 +129,7 @@ struct Rasterizer {
   // The colour (and blur) of the side that makes the claim, at its crossing.
   std::array<double, 4> value(const Claim& c) const {
     const DiffusionCurve& curve = curves[c.side / 2];
+    if (problem.channels == 1) return {blur_at(curve.blur, c.t), 0, 0, 0};
     const Color col = color_at(c.side & 1 ? curve.left : curve.right, c.t);
     return {col[0], col[1], col[2], problem.channels == 4 ? blur_at(curve.blur, c.t) : 0.0f};
   }
@@ -230,12 +231,18 @@ struct Rasterizer {
 
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
                   const RasterizeOptions& options, const MeshRaster* meshes) {
-  Problem problem = make_open_problem(width, height, options.blur_channel ? 4 : 3);
+  Problem problem = make_open_problem(width, height,
+                                      options.blur_only      ? 1
+                                      : options.blur_channel ? 4
+                                                             : 3);
   if (meshes && (meshes->width != width || meshes->height != height))
     throw std::invalid_argument("rasterize: the mesh coverage does not match the image size");
+  if (meshes && options.blur_only)
+    throw std::invalid_argument("rasterize: a blur map takes no gradient meshes");
   if (meshes) problem.rhs.assign(problem.pixel_count() * problem.channels, 0.0f);
   Rasterizer r{curves, problem, meshes, options.neumann, {}, {}, {}};
   for (std::uint32_t k = 0; k < curves.size(); ++k) {
+    if (options.blur_only && curves[k].gradient_only) continue;
     const std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
     for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);
   }

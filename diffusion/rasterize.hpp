@@ -61,6 +61,9 @@ constexpr float kMinAnchorDistance = 1e-3f;
 struct RasterizeOptions {
   double flatten_tolerance = 0.01;  // pixels: how far the flattened polyline may stray
   bool blur_channel = false;        // add each claim's blur sigma as a 4th channel (anchored too)
+  // One channel only: each claim's blur sigma (Orzan's blur map on its own). Gradient curves
+  // take no part.
+  bool blur_only = false;
   DirichletSampling dirichlet = DirichletSampling::ShortleyWeller;
   NeumannSides neumann = NeumannSides::Opaque;
 };

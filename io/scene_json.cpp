@@ -284,6 +284,8 @@ void parse_camera(Fields& f, Scene& s) {
   f.get("width", c.width);
   f.get("height", c.height);
   f.get("hysteresis", c.hysteresis);
+  f.get("focus_distance", c.focus_distance);
+  f.get("aperture", c.aperture);
   f.check(c);
 }
 
@@ -360,6 +362,15 @@ void parse_ink(Fields& f, vector::HairStyle& st) {
   f.get("fit_tolerance", k.fit_tolerance);
 }
 
+void parse_blur(Fields& f, vector::HairStyle& st) {
+  vector::BlurStyle& b = st.blur;
+  f.get("tip", b.tip);
+  f.get("tip_fade", b.tip_fade);
+  f.get("shutter", b.shutter);
+  f.get("max", b.max);
+  f.get("reference_size", b.reference_size);
+}
+
 void parse_base(Fields& f, vector::HairStyle& st) {
   vector::BaseStyle& b = st.base;
   f.get("enabled", b.enabled);
@@ -423,6 +434,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"highlights", style_object<parse_highlights>},
       {"ink", style_object<parse_ink>},
       {"base", style_object<parse_base>},
+      {"blur", style_object<parse_blur>},
   };
   return table;
 }

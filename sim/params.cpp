@@ -144,6 +144,11 @@ void validate(const CameraParams& c) {
   require(c.width >= 1 && c.width <= kMaxCameraSide, "width", side);
   require(c.height >= 1 && c.height <= kMaxCameraSide, "height", side);
   require(c.hysteresis >= 0 && c.hysteresis <= 1, "hysteresis", "must be in [0, 1] m");
+  require(c.focus_distance >= 0 && c.focus_distance <= 10 * kMaxWorldMetres, "focus_distance",
+          "must be in [0, " + std::to_string(int(10 * kMaxWorldMetres)) +
+              "] m (0: the target's distance)");
+  require(c.aperture >= 0 && c.aperture <= 1, "aperture",
+          "must be in [0, 1] m (the lens's diameter; 0: a pinhole, all in focus)");
 }
 
 void check_budget(double samples, const MotionParams& motion, const SimParams& sim) {

@@ -157,6 +157,11 @@ struct CameraParams {
   int width = 800;
   int height = 800;
   double hysteresis = 0.004;  // occlusion hysteresis band (m): see sim/camera.hpp
+  // Depth of field (vector/hair_blur.hpp): a thin lens with an aperture of this diameter (m),
+  // focused on the plane `focus_distance` (m) in front of the eye; 0: the target's distance.
+  // Aperture 0: a pinhole, everything sharp.
+  double focus_distance = 0;
+  double aperture = 0;
 };
 
 // Each validate() throws std::invalid_argument("field: what") for the first field out of its

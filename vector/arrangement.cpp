@@ -271,6 +271,14 @@ struct Resolver {
     return out;
   }
 
+  bool occluder_edge(int e) const {
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+      const int w = segments[map.sources[i].segment].wisp;
+      if (w >= n_wisps() && w < base_id()) return true;
+    }
+    return false;
+  }
+
   bool frame_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
       if (segments[map.sources[i].segment].wisp < 0) return true;
@@ -468,9 +476,12 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   }
 
   std::vector<int> silhouette(map.edge_count(), -1), occlusion(map.edge_count(), -1);
+  std::vector<int> cuts(map.edge_count(), -1);
   for (int e = 0; e < map.edge_count(); ++e) {
     const int fl = map.halfedges[2 * e].face, fr = map.halfedges[2 * e + 1].face;
     if (r.hair[fl] != r.hair[fr] && !r.frame_edge(e)) silhouette[e] = r.front[r.hair[fl] ? fl : fr];
+    if (silhouette[e] >= 0 && !options.occluders.empty() && r.occluder_edge(e))
+      cuts[e] = silhouette[e];
     if (r.hair[fl] && r.hair[fr] && r.front[fl] != r.front[fr]) {
       const int w = r.visible_wisp(e);
       occlusion[e] = w >= 0 ? w : std::min(r.front[fl], r.front[fr]);
@@ -478,6 +489,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   }
   out.silhouette = chain_edges(map, silhouette);
   out.occlusion = chain_edges(map, occlusion);
+  out.occluder_cuts = chain_edges(map, cuts);
   if (options.keep_faces) out.view = r.view();
   out.stats.resolve_ms = ms_since(t1);
 

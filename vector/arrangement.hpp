@@ -86,6 +86,8 @@ struct WispArrangement {
   HairMask mask;
   std::vector<InkLine> silhouette;  // boundary between hair and no hair (not the view frame)
   std::vector<InkLine> occlusion;   // where the front-most wisp changes inside the hair
+  // The silhouette's edges that run along an occluder: where the body in front cuts the hair.
+  std::vector<InkLine> occluder_cuts;
   ArrangementStats stats;
   ArrangementView view;  // only with ArrangementOptions::keep_faces
   // Per input wisp: where it is the front-most wisp (hair faces only), as polygons with holes;

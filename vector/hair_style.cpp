@@ -76,6 +76,17 @@ void validate(const BaseStyle& b) {
   require(b.level > 0 && b.level < 1, "level", "must be in (0, 1) (a coverage level)");
 }
 
+void validate(const BlurStyle& b) {
+  require(b.tip >= 0 && b.tip <= 256, "tip", "must be in [0, 256] pixels (0: sharp tips)");
+  require(b.tip_fade > 0 && b.tip_fade <= 1, "tip_fade",
+          "must be in (0, 1] (a fraction of the strand)");
+  require(b.shutter >= 0 && b.shutter <= 1, "shutter",
+          "must be in [0, 1] (a fraction of a frame; 0: no motion blur)");
+  require(b.max > 0 && b.max <= 256, "max", "must be in (0, 256] pixels");
+  require(b.reference_size >= 1 && b.reference_size <= 65536, "reference_size",
+          "must be in [1, 65536] pixels");
+}
+
 void validate(const HairStyle& s) {
   require(s.geometry.width > 0 && s.geometry.width <= 1, "width",
           "must be a width in (0, 1] metres");
@@ -90,6 +101,7 @@ void validate(const HairStyle& s) {
   sim::validate_part(s.specular, "highlights");
   sim::validate_part(s.ink, "ink");
   sim::validate_part(s.base, "base");
+  sim::validate_part(s.blur, "blur");
   const Lighting& l = s.shading.lighting;
   require(s.shading.model != ShadingModel::Lit || l.ambient + l.kajiya_diffuse + l.lambert > 0,
           "shading", "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");

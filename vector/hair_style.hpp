@@ -109,6 +109,22 @@ struct BaseStyle {
   double level = 0.5;   // the hairline: lower reaches farther beyond the outermost roots
 };
 
+// Blur along the hair (Orzan et al. 2008, used by Faraj): blur values on every wisp's outline,
+// diffused into a blur map that reblurs the hair, its mask and its ink (vector/hair_blur.hpp).
+// Three sources, added as variances: soft tips, depth of field (the camera's lens:
+// camera.aperture and camera.focus_distance) and motion. All zero (the default): no blur.
+struct BlurStyle {
+  // Sigma (px of an image whose shorter side is `reference_size`) at the tips, rising smoothly
+  // from 0 over the last `tip_fade` of the strand. 0: sharp tips.
+  double tip = 0;
+  double tip_fade = 0.3;
+  // The fraction of a frame the shutter stays open: a sample that moves v px per frame is
+  // softened by the sigma of a v * shutter px long smear (isotropic: softness, not streaks).
+  double shutter = 0;
+  double max = 24;  // px (reference): no sigma exceeds this
+  double reference_size = 512;
+};
+
 struct HairStyle {
   // A wisp stands for a clump of hair: about 2.8 cm wide at the root, so that some 150 guides
   // cover a head.
@@ -127,6 +143,7 @@ struct HairStyle {
   HighlightStyle specular;
   InkStyle ink;
   BaseStyle base;
+  BlurStyle blur;
 };
 
 // Each throws std::invalid_argument("field: what") for the first field out of its range, the
@@ -137,6 +154,7 @@ void validate(const ShadingStyle& shading);  // with its Lighting, whose fields 
 void validate(const HighlightStyle& highlights);
 void validate(const InkStyle& ink);
 void validate(const BaseStyle& base);
+void validate(const BlurStyle& blur);
 void validate(const HairStyle& style);
 
 }  // namespace wisp::vector

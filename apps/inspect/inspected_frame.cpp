@@ -35,7 +35,8 @@ InspectFrame FrameSource::render(int k) {
     const std::vector<float>* warm =
         prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
     solved_[j] = render::render_frame(frames_.projected[j], {}, render::frame_occluders(frames_, j),
-                                      render::frame_base(frames_, j), setup_, warm)
+                                      render::frame_base(frames_, j), setup_, warm,
+                                      render::motion_neighbour(frames_, j))
                      .solution;
   }
 
@@ -54,9 +55,9 @@ InspectFrame FrameSource::render(int k) {
   const auto prev = solved_.find(k - 1);
   const std::vector<float>* warm =
       k > first && prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
-  out.result = render::render_frame(frames_.projected[k], render::frame_body(frames_, k),
-                                    render::frame_occluders(frames_, k),
-                                    render::frame_base(frames_, k), setup, warm);
+  out.result = render::render_frame(
+      frames_.projected[k], render::frame_body(frames_, k), render::frame_occluders(frames_, k),
+      render::frame_base(frames_, k), setup, warm, render::motion_neighbour(frames_, k));
   solved_[k] = out.result.solution;
   out.image = render::rasterize_frame(out.result.picture);
   out.mask = render::rasterize_mask(out.result.arrangement.mask, out.width(), out.height());

@@ -1,9 +1,11 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), highlights, ink strokes. The same picture is written as a PNG
-// (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an image
-// clipped by the silhouette, or flat per-wisp gradients) whose layers are Inkscape layers
-// (svg_layers()); frames' SVGs become one animated SVG in apps/render/svg_animation.hpp.
+// mask (the base is part of it), highlights, ink strokes. With a blur map the hair, its mask's
+// edge and the ink are reblurred (Orzan's reblur, vector/hair_blur.hpp); the body stays sharp.
+// The same picture is written as a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real
+// paths, the shading embedded as an image clipped by the silhouette, or flat per-wisp gradients)
+// whose layers are Inkscape layers (svg_layers()); frames' SVGs become one animated SVG in
+// apps/render/svg_animation.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -93,6 +95,12 @@ struct FramePicture {
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
   std::vector<InkStroke> ink;  // on top of everything
+  // The blur map (vector/hair_blur.hpp): a Gaussian sigma in pixels per pixel of the frame, by
+  // which the hair, its mask's edge and the ink over it are reblurred; empty: all sharp.
+  std::vector<float> blur;
+  // With a blur map: the hair through its mask, reblurred (reblur_hair), as premultiplied planes
+  // (r a, g a, b a, a) of width*height floats; drawn instead of `hair` clipped by `mask`.
+  std::vector<float> blurred_hair;
   // SVG only: the wisp outlines, in a hidden debug layer, and the per-wisp regions and highlights
   // of --svg-style flat.
   std::vector<WispOutline> outlines;
@@ -106,11 +114,21 @@ std::vector<std::uint8_t> rasterize_frame(const FramePicture& picture);
 // Only the anti-aliased hair mask, as coverage in [0,255] per pixel (row-major).
 std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width, int height);
 
+// The hair image through the mask's coverage, reblurred by the picture's blur map (which must
+// be there): premultiplied planes as FramePicture::blurred_hair, so the mask's edge softens
+// where the map blurs instead of cutting the blurred hair. Only the box the blur can reach
+// around the mask is blurred.
+std::vector<float> reblur_hair(const FramePicture& picture);
+
 // Written atomically; errors name the file.
 void write_frame_png(const FramePicture& picture, const std::filesystem::path& path);
 // The anti-aliased hair mask as an 8-bit grey PNG (a matte for compositing elsewhere).
 void write_mask_png(const vector::HairMask& mask, int width, int height,
                     const std::filesystem::path& path);
+// The picture's hair matte as coverage in [0,255] per pixel: its mask's (rasterize_mask), or
+// with a blur map the reblurred hair's alpha. And as an 8-bit grey PNG.
+std::vector<std::uint8_t> hair_matte(const FramePicture& picture);
+void write_mask_png(const FramePicture& picture, const std::filesystem::path& path);
 
 // Embedded: the shading as an image clipped by the silhouette; Flat: a gradient path per
 // visible wisp region.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "apps/render/picture.hpp"
+#include "diffusion/blur.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png_encode.hpp"
 #include "vector/ink_strokes.hpp"
@@ -17,9 +18,10 @@ namespace {
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
-// Frames are opaque: RGB24 (Cairo writes such surfaces as RGB PNGs, without alpha).
-Surface make_surface(int width, int height) {
-  Surface s(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height), cairo_surface_destroy);
+// Frames are opaque: RGB24 (Cairo writes such surfaces as RGB PNGs, without alpha); layers to
+// reblur are ARGB32.
+Surface make_surface(int width, int height, cairo_format_t format = CAIRO_FORMAT_RGB24) {
+  Surface s(cairo_image_surface_create(format, width, height), cairo_surface_destroy);
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
                              std::to_string(height) + " image");
@@ -134,6 +136,102 @@ void draw_ink(cairo_t* c, const std::vector<InkStroke>& strokes) {
   }
 }
 
+// Reblurring. Rungs of 4 px and more are made on reduced images (diffusion/blur.hpp): within
+// about 2/255 of the exact blur, at a cost that does not grow with the blur.
+constexpr float kPyramidFrom = 4;
+
+// Premultiplied planes (r a, g a, b a, a) in [0,1] of an ARGB32 surface, and back.
+std::vector<float> surface_planes(cairo_surface_t* s) {
+  cairo_surface_flush(s);
+  const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const size_t n = size_t(w) * h;
+  std::vector<float> planes(4 * n);
+  for (int y = 0; y < h; ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + size_t(y) * stride);
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const std::uint32_t v = row[x];
+      planes[i] = ((v >> 16) & 0xff) / 255.0f;
+      planes[n + i] = ((v >> 8) & 0xff) / 255.0f;
+      planes[2 * n + i] = (v & 0xff) / 255.0f;
+      planes[3 * n + i] = (v >> 24) / 255.0f;
+    }
+  }
+  return planes;
+}
+
+Surface planes_surface(const std::vector<float>& planes, int w, int h) {
+  Surface s = make_surface(w, h, CAIRO_FORMAT_ARGB32);
+  cairo_surface_flush(s.get());
+  unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  const size_t n = size_t(w) * h;
+  const auto byte = [](float v, std::uint32_t most) {
+    return std::min(most, std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)));
+  };
+  for (int y = 0; y < h; ++y) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + size_t(y) * stride);
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const std::uint32_t a = byte(planes[3 * n + i], 255);  // premultiplied: colour <= alpha
+      row[x] = a << 24 | byte(planes[i], a) << 16 | byte(planes[n + i], a) << 8 |
+               byte(planes[2 * n + i], a);
+    }
+  }
+  cairo_surface_mark_dirty(s.get());
+  return s;
+}
+
+// Premultiplied planes reblurred by `sigma`, only within the box around their non-zero alpha
+// that the largest sigma reaches (three sigmas): beyond it a Gaussian's tail is below 1/255.
+void reblur(std::vector<float>& planes, int w, int h, const std::vector<float>& sigma) {
+  const size_t n = size_t(w) * h;
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (planes[3 * n + size_t(y) * w + x] > 0)
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  if (x1 < 0) return;
+  const int pad = int(std::ceil(3 * *std::max_element(sigma.begin(), sigma.end())));
+  x0 = std::max(0, x0 - pad), y0 = std::max(0, y0 - pad);
+  x1 = std::min(w - 1, x1 + pad), y1 = std::min(h - 1, y1 + pad);
+  const int cw = x1 - x0 + 1, ch = y1 - y0 + 1;
+  const size_t m = size_t(cw) * ch;
+  std::vector<float> crop(4 * m), crop_sigma(m);
+  for (int y = 0; y < ch; ++y)
+    for (int x = 0; x < cw; ++x) {
+      const size_t i = size_t(y) * cw + x, j = size_t(y + y0) * w + (x + x0);
+      for (int c = 0; c < 4; ++c) crop[c * m + i] = planes[c * n + j];
+      crop_sigma[i] = sigma[j];
+    }
+  diffusion::BlurOptions options;
+  options.pyramid_from = kPyramidFrom;
+  crop = diffusion::spatially_varying_blur(crop, 4, cw, ch, crop_sigma, options);
+  for (int y = 0; y < ch; ++y)
+    for (int x = 0; x < cw; ++x)
+      for (int c = 0; c < 4; ++c)
+        planes[c * n + size_t(y + y0) * w + (x + x0)] = crop[c * m + size_t(y) * cw + x];
+}
+
+// The ink strokes alone, reblurred like the hair under them.
+Surface blurred_ink(const FramePicture& pic) {
+  Surface layer = make_surface(pic.width, pic.height, CAIRO_FORMAT_ARGB32);
+  {
+    Context cr(cairo_create(layer.get()), cairo_destroy);
+    draw_ink(cr.get(), pic.ink);
+  }
+  std::vector<float> planes = surface_planes(layer.get());
+  reblur(planes, pic.width, pic.height, pic.blur);
+  return planes_surface(planes, pic.width, pic.height);
+}
+
+void paint_layer(cairo_t* c, cairo_surface_t* layer) {
+  cairo_set_source_surface(c, layer, 0, 0);
+  cairo_paint(c);
+}
+
 Surface draw(const FramePicture& pic) {
   Surface surface = make_surface(pic.width, pic.height);
   Context cr(cairo_create(surface.get()), cairo_destroy);
@@ -150,6 +248,12 @@ Surface draw(const FramePicture& pic) {
     cairo_fill(c);
   }
   draw_ink(c, pic.face);  // on the head, under the hair
+  if (!pic.blurred_hair.empty()) {
+    paint_layer(c, planes_surface(pic.blurred_hair, pic.width, pic.height).get());
+    if (!pic.ink.empty()) paint_layer(c, blurred_ink(pic).get());
+    cairo_surface_flush(surface.get());
+    return surface;
+  }
   if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
     Surface hair = hair_surface(pic.hair);
     cairo_save(c);
@@ -200,6 +304,39 @@ std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width
     std::copy(data + size_t(y) * stride, data + size_t(y) * stride + width,
               &out[size_t(y) * width]);
   return out;
+}
+
+std::vector<float> reblur_hair(const FramePicture& pic) {
+  if (pic.blur.size() != size_t(pic.width) * pic.height)
+    throw std::logic_error("reblur_hair: the picture has no blur map of its size");
+  Surface layer = make_surface(pic.width, pic.height, CAIRO_FORMAT_ARGB32);
+  if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
+    Context cr(cairo_create(layer.get()), cairo_destroy);
+    cairo_t* c = cr.get();
+    Surface hair = hair_surface(pic.hair);
+    mask_path(c, pic.mask);
+    cairo_clip(c);
+    cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
+    paint_layer(c, hair.get());
+  }
+  std::vector<float> planes = surface_planes(layer.get());
+  reblur(planes, pic.width, pic.height, pic.blur);
+  return planes;
+}
+
+std::vector<std::uint8_t> hair_matte(const FramePicture& pic) {
+  if (pic.blurred_hair.empty()) return rasterize_mask(pic.mask, pic.width, pic.height);
+  const size_t n = size_t(pic.width) * pic.height;
+  std::vector<std::uint8_t> coverage(n);
+  for (size_t i = 0; i < n; ++i)
+    coverage[i] =
+        std::uint8_t(std::lround(std::clamp(pic.blurred_hair[3 * n + i], 0.0f, 1.0f) * 255));
+  return coverage;
+}
+
+void write_mask_png(const FramePicture& pic, const std::filesystem::path& path) {
+  const std::vector<std::uint8_t> coverage = hair_matte(pic);
+  io::write_png_fast(path, {coverage.data(), pic.width, pic.height, 1, size_t(pic.width)});
 }
 
 void write_mask_png(const vector::HairMask& mask, int width, int height,

@@ -165,6 +165,78 @@ std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, in
   return "data:image/png;base64," + base64(png);
 }
 
+// The reblurred hair (premultiplied planes, FramePicture::blurred_hair) as an RGBA PNG: its alpha
+// is the softened mask, so the image needs no clip path.
+std::string rgba_data_uri(const std::vector<float>& planes, int width, int height) {
+  const size_t n = size_t(width) * height;
+  std::vector<std::uint8_t> rgba(4 * n);
+  const auto byte = [](float v) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const float a = planes[3 * n + i];
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = byte(a > 0 ? planes[c * n + i] / a : 0.0f);
+    rgba[4 * i + 3] = byte(a);
+  }
+  const std::vector<std::uint8_t> png =
+      io::encode_png({rgba.data(), width, height, 4, 4 * n / height});
+  return "data:image/png;base64," + base64(png);
+}
+
+// Vector layers under a blur map. SVG has no spatially varying blur, so each path (a flat wisp
+// region, the hair base, an ink stroke) takes one Gaussian: the blur map's mean at its points,
+// rounded to a half-octave level (0.5 px * 2^(k/2)); paths of one level share one group with
+// one feGaussianBlur filter. Below kSharpest a path stays sharp (level -1).
+constexpr double kSharpest = 0.35;
+
+double mean_blur(const FramePicture& pic, const std::vector<Eigen::Vector2d>& points) {
+  if (pic.blur.empty() || points.empty()) return 0;
+  double sum = 0;
+  for (const Eigen::Vector2d& p : points) {
+    const int x = std::clamp(int(p.x()), 0, pic.width - 1);
+    const int y = std::clamp(int(p.y()), 0, pic.height - 1);
+    sum += pic.blur[size_t(y) * pic.width + x];
+  }
+  return sum / double(points.size());
+}
+
+int blur_level(double sigma) {
+  return sigma < kSharpest ? -1 : std::max(0, int(std::lround(2 * std::log2(sigma / 0.5))));
+}
+
+double level_sigma(int level) {
+  return 0.5 * std::pow(2.0, 0.5 * level);
+}
+
+std::vector<Eigen::Vector2d> area_points(const vector::HairMask& area) {
+  std::vector<Eigen::Vector2d> out;
+  for (const vector::MaskPolygon& p : area.polygons)
+    out.insert(out.end(), p.outer.begin(), p.outer.end());
+  return out;
+}
+
+// Writes the paths gathered per blur level, each level but the sharp one (-1) in a group with
+// its filter.
+void write_levels(std::ostringstream& o, std::map<int, std::ostringstream>& levels) {
+  for (auto& [level, paths] : levels) {
+    if (level >= 0) o << "<g filter=\"url(#blur" << level << ")\">\n";
+    o << paths.str();
+    if (level >= 0) o << "</g>\n";
+  }
+}
+
+// The filters of the blur levels that a blurred picture's vector layers use (all of them up to
+// the largest, a line each: unused ones cost nothing).
+void blur_filters(std::ostringstream& o, const FramePicture& pic, const Num& num) {
+  if (pic.blur.empty()) return;
+  const float largest = *std::max_element(pic.blur.begin(), pic.blur.end());
+  for (int level = 0; level <= blur_level(largest); ++level)
+    o << "<filter id=\"blur" << level
+      << "\" filterUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"" << pic.width << "\" height=\""
+      << pic.height << "\"><feGaussianBlur stdDeviation=\"" << num(level_sigma(level))
+      << "\"/></filter>\n";
+}
+
 // A variable-width stroke as one filled path: the left offsets forward, the right ones back.
 std::string ink_outline(const Num& num, const InkStroke& ink) {
   const size_t n = ink.points.size();
@@ -191,32 +263,35 @@ std::string ink_outline(const Num& num, const InkStroke& ink) {
 }
 
 // Ink strokes, each with the id `prefix`-kind-n (n counting strokes of that kind from 1): one
-// path, or a group of its constant-width pieces.
+// path, or a group of its constant-width pieces; under a blur map (`blur`), grouped by level.
 void ink_strokes(std::ostringstream& o, const Num& num, const std::string& prefix,
-                 const std::vector<InkStroke>& strokes) {
+                 const std::vector<InkStroke>& strokes, const FramePicture* blur = nullptr) {
   std::map<std::string, int> count;
+  std::map<int, std::ostringstream> levels;
   for (const InkStroke& ink : strokes) {
     const std::string kind = ink.kind.empty() ? "stroke" : ink.kind;
     const std::string id = prefix + '-' + kind + '-' + std::to_string(++count[kind]);
+    std::ostringstream& out = levels[blur ? blur_level(mean_blur(*blur, ink.points)) : -1];
     if (!ink.curve.points.empty()) {
-      // Real strokes: constant-width pieces of the Bezier path (ink_pieces, as in the PNG).
+      // Real strokes: constant-width pieces of the Bezier path (ink_pieces).
       const std::string color = hex(ink.color);
       const std::vector<InkPiece> pieces = ink_pieces(ink);
       if (pieces.empty()) continue;
       if (pieces.size() == 1) {
-        o << "<path id=\"" << id << "\" d=\"" << bezier_path(num, pieces[0]) << "\" stroke=\""
-          << color << "\" stroke-width=\"" << num(pieces[0].width) << "\"/>\n";
+        out << "<path id=\"" << id << "\" d=\"" << bezier_path(num, pieces[0]) << "\" stroke=\""
+            << color << "\" stroke-width=\"" << num(pieces[0].width) << "\"/>\n";
         continue;
       }
-      o << "<g id=\"" << id << "\" stroke=\"" << color << "\">";
+      out << "<g id=\"" << id << "\" stroke=\"" << color << "\">";
       for (const InkPiece& p : pieces)
-        o << "<path d=\"" << bezier_path(num, p) << "\" stroke-width=\"" << num(p.width) << "\"/>";
-      o << "</g>\n";
+        out << "<path d=\"" << bezier_path(num, p) << "\" stroke-width=\"" << num(p.width) << "\"/>";
+      out << "</g>\n";
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
-      o << "<path id=\"" << id << "\" d=\"" << ink_outline(num, ink) << "\" fill=\""
-        << hex(ink.color) << "\" stroke=\"none\"/>\n";
+      out << "<path id=\"" << id << "\" d=\"" << ink_outline(num, ink) << "\" fill=\""
+          << hex(ink.color) << "\" stroke=\"none\"/>\n";
     }
   }
+  write_levels(o, levels);
 }
 
 const char* part_name(int part) {
@@ -257,9 +332,12 @@ void body_layer(const Writer& w, LayerText& out) {
 }
 
 void hair_base_layer(const Writer& w, LayerText& out) {
-  if (!w.pic.base.polygons.empty())
-    out.body << "<path id=\"hair-base-fill\" fill-rule=\"evenodd\" d=\""
-             << mask_path(w.num, w.pic.base) << "\" fill=\"" << hex(w.pic.base_color) << "\"/>\n";
+  if (w.pic.base.polygons.empty()) return;
+  std::map<int, std::ostringstream> levels;
+  levels[blur_level(mean_blur(w.pic, area_points(w.pic.base)))]
+      << "<path id=\"hair-base-fill\" fill-rule=\"evenodd\" d=\"" << mask_path(w.num, w.pic.base)
+      << "\" fill=\"" << hex(w.pic.base_color) << "\"/>\n";
+  write_levels(out.body, levels);
 }
 
 // The pixel box holding the mask (grown by a pixel for anti-aliasing), within the picture.
@@ -308,6 +386,12 @@ std::vector<std::pair<double, Rgb>> needed_stops(const std::vector<std::pair<dou
 // a stroke around each region would.
 void hair_layer(const Writer& w, LayerText& out) {
   const FramePicture& pic = w.pic;
+  if (w.style == SvgStyle::Embedded && !pic.blurred_hair.empty()) {
+    out.body << "<image id=\"hair-shading\" x=\"0\" y=\"0\" width=\"" << pic.width
+             << "\" height=\"" << pic.height << "\" preserveAspectRatio=\"none\" xlink:href=\""
+             << rgba_data_uri(pic.blurred_hair, pic.width, pic.height) << "\"/>\n";
+    return;
+  }
   if (w.style == SvgStyle::Embedded) {
     const std::string silhouette = mask_path(w.num, pic.mask);
     if (pic.hair.planes.empty() || silhouette.empty()) return;
@@ -338,6 +422,8 @@ void hair_layer(const Writer& w, LayerText& out) {
     out.body << "<use id=\"hair-underlay\" xlink:href=\"#hair-shape\" fill=\""
              << hex(mean / float(n)) << "\" mask=\"url(#hair-inside)\"/>\n";
   }
+  // Front regions do not overlap, so grouping them by blur level keeps the picture.
+  std::map<int, std::ostringstream> levels;
   for (const FlatRegion& r : pic.flat) {
     const std::string id = "wisp-" + std::to_string(r.wisp);
     out.defs << "<linearGradient id=\"" << id
@@ -347,9 +433,11 @@ void hair_layer(const Writer& w, LayerText& out) {
     for (const auto& [offset, c] : needed_stops(r.stops))
       out.defs << "<stop offset=\"" << Num{4}(offset) << "\" stop-color=\"" << hex(c) << "\"/>";
     out.defs << "</linearGradient>\n";
-    out.body << "<path id=\"" << id << "\" fill-rule=\"evenodd\" d=\"" << mask_path(w.num, r.area)
-             << "\" fill=\"url(#" << id << "-gradient)\"/>\n";
+    levels[blur_level(mean_blur(pic, area_points(r.area)))]
+        << "<path id=\"" << id << "\" fill-rule=\"evenodd\" d=\"" << mask_path(w.num, r.area)
+        << "\" fill=\"url(#" << id << "-gradient)\"/>\n";
   }
+  write_levels(out.body, levels);
 }
 
 // Flat SVGs: each highlight filled with its colour, clipped to where its wisp is in front (a copy
@@ -376,7 +464,8 @@ void highlights_layer(const Writer& w, LayerText& out) {
 }
 
 void ink_layer(const Writer& w, LayerText& out) {
-  ink_strokes(out.body, w.num, "ink", w.pic.ink);
+  blur_filters(out.defs, w.pic, w.num);
+  ink_strokes(out.body, w.num, "ink", w.pic.ink, w.pic.blur.empty() ? nullptr : &w.pic);
 }
 
 void outlines_layer(const Writer& w, LayerText& out) {

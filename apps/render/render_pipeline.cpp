@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "diffusion/antialias.hpp"
+#include "diffusion/blur.hpp"
 #include "diffusion/rasterize.hpp"
 #include "diffusion/timer.hpp"
 #include "vector/hair_base.hpp"
@@ -100,7 +101,8 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, vector::HairBase base,
-                         const FrameSetup& setup, const std::vector<float>* warm_start) {
+                         const FrameSetup& setup, const std::vector<float>* warm_start,
+                         const sim::ProjectedFrame* neighbour) {
   const auto t_start = Clock::now();
   FrameResult r;
   const int W = frame.width, H = frame.height;
@@ -161,9 +163,18 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
     r.problem = diffusion::rasterize(r.curves, W, H);
     r.time.rasterize = ms_since(t0);
     t0 = Clock::now();
-    const bool warm = warm_start && warm_start->size() == r.problem.pixel_count() * 3;
-    diffusion::Solution s =
-        diffusion::solve_multigrid(r.problem, setup.solver, warm ? warm_start : nullptr);
+    // The warm start holds the colours, then the previous blur map when there was one.
+    const size_t n = r.problem.pixel_count();
+    const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);
+    std::vector<float> warm_colours, warm_blur;
+    if (warm && warm_start->size() == 4 * n) {
+      warm_colours.assign(warm_start->begin(), warm_start->begin() + 3 * n);
+      warm_blur.assign(warm_start->begin() + 3 * n, warm_start->end());
+    }
+    diffusion::Solution s = diffusion::solve_multigrid(r.problem, setup.solver,
+                                                       !warm                  ? nullptr
+                                                       : warm_colours.empty() ? warm_start
+                                                                              : &warm_colours);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     pic.hair = {W, H, s.planes};
@@ -172,6 +183,17 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
       t0 = Clock::now();
       r.antialias = antialias_hair(r.curves, pic.mask, pic.hair);
       r.time.antialias = ms_since(t0);
+    }
+    t0 = Clock::now();
+    const std::vector<diffusion::DiffusionCurve> blurred = vector::blur_curves(
+        frame, r.wisps, r.arrangement, setup.style.blur, {setup.lens, neighbour});
+    if (!blurred.empty()) {
+      diffusion::Solution b = diffusion::solve_blur_map(blurred, W, H, setup.solver,
+                                                        warm_blur.empty() ? nullptr : &warm_blur);
+      pic.blur = std::move(b.planes);
+      r.solution.insert(r.solution.end(), pic.blur.begin(), pic.blur.end());
+      pic.blurred_hair = reblur_hair(pic);
+      r.time.blur = ms_since(t0);
     }
   }
   if (!setup.keep_faces) r.arrangement.view = {};

@@ -4,7 +4,8 @@
 //   in the style: the visible outline pieces, lit by the frame's light, and curves inside the
 //   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
 //   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
-//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes).
+//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes), and, when the
+//   style or the lens blurs, the blur map of the outlines' blur values (vector/hair_blur).
 // Used by `wisp render` for every frame and by the inspector for the one it shows.
 #pragma once
 
@@ -16,6 +17,7 @@
 #include "diffusion/multigrid.hpp"
 #include "sim/projected.hpp"
 #include "vector/arrangement.hpp"
+#include "vector/hair_blur.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/hair_style.hpp"
 #include "vector/ink_strokes.hpp"
@@ -29,6 +31,7 @@ struct FrameSetup {
   bool keep_faces = false;    // keep the arrangement's faces in FrameResult (the inspector)
   bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
   bool antialias = true;      // mix both sides' colours where visible curves cross pixels
+  vector::Lens lens;          // depth of field (vector/hair_blur.hpp); aperture 0: none
 };
 
 // Milliseconds per stage.
@@ -36,6 +39,7 @@ struct FrameTimings {
   double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
   double ink = 0;        // fitting the ink strokes
   double antialias = 0;  // re-sampling the pixels that visible curves cross
+  double blur = 0;       // the blur values and the blur map's solve
 };
 
 struct FrameResult {
@@ -49,7 +53,8 @@ struct FrameResult {
   diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;
-  std::vector<float> solution;  // the solved RGB planes: the next frame's warm start
+  // The solved RGB planes, then the blur map when there is one: the next frame's warm start.
+  std::vector<float> solution;
   FrameTimings time;
 };
 
@@ -58,9 +63,11 @@ struct FrameResult {
 // arrangement cuts it along their silhouettes, so hair slides behind the head continuously
 // instead of losing whole samples; without, wisps keep the samples the camera marked visible.
 // `base`: the hair base of the frame (scene_frames.hpp: frame_base), or empty for none.
-// `warm_start`: the previous frame's solution (same size) or null.
+// `warm_start`: the previous frame's solution (same size) or null. `neighbour`: the frame before
+// (or after, for the first), for the blur's motion (vector::BlurSources); null: no motion.
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, vector::HairBase base,
-                         const FrameSetup& setup, const std::vector<float>* warm_start);
+                         const FrameSetup& setup, const std::vector<float>* warm_start,
+                         const sim::ProjectedFrame* neighbour = nullptr);
 
 }  // namespace wisp::render

@@ -149,17 +149,16 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
     std::vector<float> warm;
     for (int k = b * plan.block; k < end; ++k) {
       const auto t_frame = Clock::now();
-      FrameResult r =
-          render_frame(frames.projected[k], frame_body(frames, k), frame_occluders(frames, k),
-                       frame_base(frames, k), setup, warm.empty() ? nullptr : &warm);
+      FrameResult r = render_frame(frames.projected[k], frame_body(frames, k),
+                                   frame_occluders(frames, k), frame_base(frames, k), setup,
+                                   warm.empty() ? nullptr : &warm, motion_neighbour(frames, k));
       warm = std::move(r.solution);
       if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
       const auto t_write = Clock::now();
       write_frame_png(r.picture, files.folder / frame_file_name(k, "png"));
       write_frame_svg(r.picture, files.folder / frame_file_name(k, "svg"), files.svg_style);
       if (files.masks)
-        write_mask_png(r.picture.mask, r.picture.width, r.picture.height,
-                       files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
+        write_mask_png(r.picture, files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
       const double write_ms = ms_since(t_write);
       stats[k] = frame_stats(frames, k, r, write_ms, ms_since(t_frame));
       io::write_text_atomically(record_path(files.folder, k), stats[k].dump() + "\n");

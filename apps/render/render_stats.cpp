@@ -46,6 +46,7 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
             {"rasterize", r.time.rasterize},
             {"solve", r.time.solve},
             {"antialias", r.time.antialias},
+            {"blur", r.time.blur},
             {"write", write_ms},
             {"frame", frame_ms}}}};
 }

@@ -62,6 +62,10 @@ FrameSetup frame_setup(const io::Scene& scene) {
   setup.solver.tolerance = scene.render.solver_tolerance;
   setup.background = scene.render.background_color;
   setup.antialias = scene.render.antialias;
+  const sim::CameraParams& camera = scene.camera;
+  setup.lens.aperture = camera.aperture;
+  setup.lens.focus_distance =
+      camera.focus_distance > 0 ? camera.focus_distance : (camera.target - camera.eye).norm();
   return setup;
 }
 
@@ -107,6 +111,11 @@ vector::HairBase frame_base(const SceneFrames& frames, int k) {
   return vector::trace_hair_base([&](const Eigen::Vector2d& p) { return view->field(p); },
                                  [view](const Eigen::Vector2d& p) { return view->depth(p); }, box,
                                  options);
+}
+
+const sim::ProjectedFrame* motion_neighbour(const SceneFrames& frames, int k) {
+  const int other = k > 0 ? k - 1 : k + 1;
+  return other < frames.frame_count() ? &frames.projected[other] : nullptr;
 }
 
 std::pair<int, int> parse_size(const std::string& option, const std::string& text) {

@@ -70,6 +70,10 @@ std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k);
 // (at least 1 px); empty when the style has none.
 vector::HairBase frame_base(const SceneFrames& frames, int k);
 
+// The frame whose strands give frame k its motion, for the blur (vector::BlurSources): the one
+// before, or the one after for the first; null when there is no other.
+const sim::ProjectedFrame* motion_neighbour(const SceneFrames& frames, int k);
+
 // "WxH" -> (W, H), each side 1 to io::kMaxImageSide. Throws std::invalid_argument naming `option`.
 std::pair<int, int> parse_size(const std::string& option, const std::string& text);
 

@@ -129,3 +129,37 @@ TEST_CASE("an open curve inside a closed loop constrains with both its colours",
   CHECK(im.planes[2 * n + at_right] > 0.9f);  // blue just right of it
   CHECK(im.planes[at_right] < 0.1f);
 }
+
+TEST_CASE("pyramid rungs stay within about 2/255 of the exact blur", "[render]") {
+  const int n = 96;
+  std::vector<float> step(n * n);
+  for (int i = 0; i < n * n; ++i) step[i] = (i % n) >= n / 2 ? 1.0f : 0.0f;
+  BlurOptions pyramid;
+  pyramid.pyramid_from = 4;
+  for (const float s : {4.0f, 6.0f, 8.0f, 16.0f}) {
+    const std::vector<float> sigma(n * n, s);
+    const auto exact = spatially_varying_blur(step, 1, n, n, sigma);
+    const auto fast = spatially_varying_blur(step, 1, n, n, sigma, pyramid);
+    float worst = 0;
+    for (int i = 0; i < n * n; ++i) worst = std::max(worst, std::abs(exact[i] - fast[i]));
+    INFO("sigma " << s);
+    CHECK(worst < 0.01f);
+  }
+}
+
+TEST_CASE("the blur map alone diffuses the curves' blur values between them", "[render]") {
+  // Vertical lines at x = 16 and 48 with blur 2 and 6: linear in between, constant outside.
+  const auto line = [](double x, float sigma) {
+    DiffusionCurve c;
+    c.points = {{x, -1}, {x, 20}, {x, 44}, {x, 65}};
+    c.blur = {{0, sigma}};
+    return c;
+  };
+  const Solution map = solve_blur_map({line(16, 2), line(48, 6)}, 64, 64, {});
+  REQUIRE(map.channels == 1);
+  for (int x : {4, 20, 32, 40, 60}) {
+    const double expected = x < 16 ? 2 : x > 48 ? 6 : 2 + 4 * (x + 0.5 - 16) / 32;
+    INFO("x = " << x);
+    CHECK(map.planes[32 * 64 + x] == Approx(expected).margin(1e-3));
+  }
+}

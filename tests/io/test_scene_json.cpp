@@ -155,6 +155,35 @@ TEST_CASE("range errors are the stage's validate() messages behind the file and 
       "lambert weight");
 }
 
+TEST_CASE("the lens and the style's blur are read, off by default, and checked", "[io][scene]") {
+  const auto plain = parse_scene(json::object(), "scene.json");
+  CHECK(plain.camera.aperture == 0);
+  CHECK(plain.camera.focus_distance == 0);
+  CHECK(plain.style.blur.tip == 0);
+  CHECK(plain.style.blur.shutter == 0);
+  const auto s = parse_scene(json::parse(R"({"camera": {"aperture": 0.08, "focus_distance": 0.9},
+      "style": {"blur": {"tip": 3, "tip_fade": 0.2, "shutter": 0.5, "max": 12}}})"),
+                             "scene.json");
+  CHECK(s.camera.aperture == 0.08);
+  CHECK(s.camera.focus_distance == 0.9);
+  CHECK(s.style.blur.tip == 3);
+  CHECK(s.style.blur.tip_fade == 0.2);
+  CHECK(s.style.blur.shutter == 0.5);
+  CHECK(s.style.blur.max == 12);
+  CHECK(error_of({{"camera", {{"aperture", -0.1}}}}) ==
+        "scene.json: camera.aperture: must be in [0, 1] m (the lens's diameter; 0: a pinhole, all "
+        "in focus)");
+  CHECK(error_of({{"camera", {{"focus_distance", -1}}}}) ==
+        "scene.json: camera.focus_distance: must be in [0, 1000] m (0: the target's distance)");
+  CHECK(error_of({{"style", {{"blur", {{"tip_fade", 0}}}}}}) ==
+        "scene.json: style.blur.tip_fade: must be in (0, 1] (a fraction of the strand)");
+  CHECK(error_of({{"style", {{"blur", {{"shutter", 2}}}}}}) ==
+        "scene.json: style.blur.shutter: must be in [0, 1] (a fraction of a frame; 0: no motion "
+        "blur)");
+  CHECK(error_of({{"style", {{"blur", {{"tips", 2}}}}}}) ==
+        "scene.json: style.blur.tips: unknown field (did you mean \"tip\"?)");
+}
+
 TEST_CASE("bad values are errors naming the field", "[io][scene]") {
   CHECK(error_of({{"hair", {{"count", -5}}}}).find("scene.json: hair.count: must be at least 1") ==
         0);
