@@ -215,7 +215,7 @@ TEST_CASE("blurred SVGs: the embedded image carries the softened matte, flat lay
   setup.flat_regions = true;
   const render::FramePicture pic = render_one(f, setup).result.picture;
   const std::string embedded = render::format_frame_svg(pic, render::SvgStyle::Embedded);
-  CHECK(embedded.find("<image id=\"hair\"") != std::string::npos);
+  CHECK(embedded.find("<image id=\"hair-shading\"") != std::string::npos);
   CHECK(embedded.find("clip-path=\"url(#hair-silhouette)\"") == std::string::npos);
   CHECK(embedded.find("<feGaussianBlur stdDeviation=\"4\"/>") != std::string::npos);
   // The ink along the silhouette: sigma 4 is half-octave level 6 (0.5 px * 2^3).
