@@ -1,6 +1,6 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), ink strokes. The same picture is written as
+// mask (the base is part of it), hatch strokes, ink strokes. The same picture is written as
 // a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
 // image clipped by the silhouette, or flat per-wisp gradients).
 #pragma once
@@ -44,6 +44,11 @@ struct InkStroke {
   std::vector<std::pair<double, double>> curve_width;
 };
 
+// A Bezier path with its full width as (s, px) stops as a stroke in `color`, with its flattening
+// (for tools that draw polylines) at the cubics' ends and thirds.
+InkStroke ink_stroke(const diffusion::BezierPath& path,
+                     const std::vector<std::pair<double, double>>& width, const Rgb& color);
+
 // A variable-width Bezier stroke as constant-width stroked paths, drawn the same way in the PNG
 // (Cairo) and the SVG (one <path> with stroke-width each; rsvg is Cairo, browsers stroke alike):
 // the cubics are split (de Casteljau, exact geometry) wherever the width, rounded to a multiple
@@ -76,6 +81,8 @@ struct FramePicture {
   // hair (in PNGs the hair image covers it).
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
+  // Hatch strokes in the shadows (vector/hatching.hpp): over the hair and the body, under the ink.
+  std::vector<InkStroke> hatching;
   std::vector<InkStroke> ink;  // on top of everything
   // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
   // --svg-style flat.

@@ -200,6 +200,7 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   for (const diffusion::BezierPath& outline : pic.outlines)
     if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
   o << " </g>\n";
+  ink_group(o, "hatching", pic.hatching);
   ink_group(o, "ink", pic.ink);
   o << "</svg>\n";
   return o.str();

@@ -4,12 +4,14 @@
 //   in the style: the visible outline pieces, lit by the frame's light, and curves inside the
 //   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
 //   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
-//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes).
+//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes) and hatch strokes
+//   in the hair's shadows (vector/hatching).
 // Used by `wisp render` for every frame and by the inspector for the one it shows.
 #pragma once
 
 #include <vector>
 
+#include "apps/render/body_hatching.hpp"
 #include "apps/render/body_paths.hpp"
 #include "apps/render/picture.hpp"
 #include "diffusion/antialias.hpp"
@@ -18,6 +20,7 @@
 #include "vector/arrangement.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/hair_style.hpp"
+#include "vector/hatching.hpp"
 #include "vector/ink_strokes.hpp"
 
 namespace wisp::render {
@@ -36,6 +39,7 @@ struct FrameTimings {
   double wisps = 0, arrangement = 0, curves = 0, rasterize = 0, solve = 0, total = 0;
   double ink = 0;        // fitting the ink strokes
   double antialias = 0;  // re-sampling the pixels that visible curves cross
+  double hatching = 0;   // laying and clipping the hatch strokes
 };
 
 struct FrameResult {
@@ -46,6 +50,8 @@ struct FrameResult {
   vector::HairCurveStats curve_stats;             // how many of each kind
   int base_curves = 0;                            // the hair base's, after the others
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
+  std::vector<vector::HatchStroke> hatching;      // picture.hatching's on the hair, then
+  std::vector<BodyHatch> body_hatching;           // its strokes on the body
   diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;
