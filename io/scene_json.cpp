@@ -89,6 +89,15 @@ class Fields {
       out = v->get<std::string>();
     }
   }
+  // A list of numbers.
+  void get(const char* key, std::vector<double>& out) {
+    if (const json* v = find(key)) {
+      if (!v->is_array()) fail(name(key), "expected an array of numbers, got " + json_excerpt(*v));
+      out.clear();
+      for (std::size_t i = 0; i < v->size(); ++i)
+        out.push_back(number((*v)[i], name(key) + "[" + std::to_string(i) + "]"));
+    }
+  }
   void get(const char* key, Eigen::Vector3d& out) {
     if (const json* v = find(key)) out = vector3(*v, name(key));
   }
@@ -379,6 +388,28 @@ void parse_base(Fields& f, vector::HairStyle& st) {
   f.get("level", b.level);
 }
 
+void parse_hatching(Fields& f, vector::HairStyle& st) {
+  vector::HatchStyle& h = st.hatching;
+  f.get("enabled", h.enabled);
+  f.get("tones", h.tones);
+  f.get("coverage", h.coverage);
+  f.get("cross", h.cross);
+  f.get("cross_angle_deg", h.cross_angle_deg);
+  f.get("width", h.width);
+  f.get("length", h.length);
+  f.get("length_jitter", h.length_jitter);
+  f.get("lanes", h.lanes);
+  f.get("reach", h.reach);
+  f.get("candidates", h.candidates);
+  f.get("soft", h.soft);
+  f.get("end_taper", h.end_taper);
+  f.color("color", h.color);
+  f.get("seed", h.seed);
+  f.get("body", h.body);
+  f.get("body_tones", h.body_tones);
+  f.get("body_spacing", h.body_spacing);
+}
+
 // A nested object of the style, parsed by `parse` and checked for unknown keys.
 template <void (*parse)(Fields&, vector::HairStyle&)>
 void style_object(Fields& f, const char* k, vector::HairStyle& s) {
@@ -435,6 +466,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"ink", style_object<parse_ink>},
       {"base", style_object<parse_base>},
       {"blur", style_object<parse_blur>},
+      {"hatching", style_object<parse_hatching>},
   };
   return table;
 }

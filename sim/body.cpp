@@ -477,8 +477,10 @@ ProjectedBody BodyModel::project(const HeadPose& pose, const Camera& camera,
     p.pixel.resize(n);
     p.shade.resize(n);
     p.clearance.assign(n, std::numeric_limits<float>::infinity());
+    p.local.resize(n);
     for (std::size_t v = 0; v < n; ++v) {
       const Vector3d& x = s.vertices[v];
+      p.local[v] = s.solid < 0 ? pose.to_local(x) : Vector3d(posed.to_local[s.solid] * x);
       in_front[v] = (x - camera.eye).dot(camera.forward) >= kNear;
       p.pixel[v] = camera.project(x);
       p.shade[v] = float(std::clamp(0.5 * (1 + s.normals[v].dot(light)), 0.0, 1.0));

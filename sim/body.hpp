@@ -147,6 +147,10 @@ struct ProjectedSurface {
   // away from the light, 1 faces it), and the signed distance in metres to the nearest solid
   // drawn before this surface (+infinity if none): the surface shows where it is positive.
   std::vector<float> shade, clearance;
+  // Per vertex: where it sits on its solid, in the solid's own frame (head-local for the head,
+  // the sweep's frame for the others): coordinates that move with the surface, for strokes laid
+  // on it (apps/render/body_hatching.hpp).
+  std::vector<Eigen::Vector3d> local;
   // The front faces whose corners are all in front of the eye and not all inside an earlier
   // solid.
   std::vector<Eigen::Vector3i> triangles;

@@ -97,26 +97,6 @@ HairCurves faraj_curves(const std::vector<Wisp>& wisps, const WispArrangement& a
   return result;
 }
 
-// What the wisps share: the light, the depth range, the head's centre (from the strands' roots).
-FrameLight frame_light(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
-                       const HairStyle& style) {
-  std::vector<Vector3d> roots;
-  for (const sim::ProjectedStrand& s : frame.strands)
-    if (!s.world.empty()) roots.push_back(s.world.front());
-  FrameLight light;
-  light.head_centre = head_centre_from_roots(roots);
-  for (const Vector3d& r : roots)
-    light.head_radius += (r - light.head_centre).norm() / double(roots.size());
-  light.light =
-      frame.light_dir.norm() > 0 ? Vector3d(frame.light_dir.normalized()) : Vector3d::UnitZ();
-  double zmin = 1e300, zmax = 0;
-  for (const Wisp& w : wisps)
-    for (double z : w.centre.depth) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
-  light.z_near = style.shading.depth_near > 0 ? style.shading.depth_near : zmin;
-  light.z_far = style.shading.depth_far > 0 ? style.shading.depth_far : zmax;
-  return light;
-}
-
 // The charts of the wisps that show (null for hidden ones) and their shading samples.
 struct WispCharts {
   std::vector<std::unique_ptr<WispChart>> chart;
@@ -225,7 +205,7 @@ std::vector<diffusion::DiffusionCurve> hair_curves(
 }
 
 bool needs_visible_regions(const HairStyle& style) {
-  return style.specular.shape != HighlightShape::None ||
+  return style.specular.shape != HighlightShape::None || style.hatching.enabled ||
          (style.shading.model == ShadingModel::Lit &&
           (style.shading.centre_line || (style.shading.ramp && style.shading.hard_bands)));
 }

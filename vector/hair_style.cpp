@@ -87,6 +87,36 @@ void validate(const BlurStyle& b) {
           "must be in [1, 65536] pixels");
 }
 
+void validate(const HatchStyle& h) {
+  require(!h.tones.empty() && h.tones.size() <= 8, "tones", "must list 1 to 8 tone levels");
+  require(h.coverage.size() == h.tones.size(), "coverage", "must have one entry per tone level");
+  for (size_t k = 0; k < h.tones.size(); ++k) {
+    require(h.tones[k] > 0 && h.tones[k] <= 1 && (k == 0 || h.tones[k] < h.tones[k - 1]), "tones",
+            "must be descending, in (0, 1]");
+    require(
+        h.coverage[k] > 0 && h.coverage[k] <= 0.9 && (k == 0 || h.coverage[k] > h.coverage[k - 1]),
+        "coverage", "must be ascending, in (0, 0.9]");
+  }
+  require(h.cross_angle_deg >= 10 && h.cross_angle_deg <= 90, "cross_angle_deg",
+          "must be in [10, 90] degrees");
+  require(h.width > 0 && h.width <= 100, "width", "must be in (0, 100] pixels");
+  require(h.length >= 1e-3 && h.length <= 1, "length", "must be in [0.001, 1] scene units");
+  require(h.length_jitter >= 0 && h.length_jitter < 1, "length_jitter", "must be in [0, 1)");
+  require(h.lanes >= 2 && h.lanes <= 64, "lanes", "must be in [2, 64]");
+  require(h.reach > 0 && h.reach <= 1, "reach", "must be in (0, 1] (a fraction of the half-width)");
+  require(h.candidates >= 1 && h.candidates <= 100, "candidates", "must be in [1, 100]");
+  require(h.soft >= 0 && h.soft <= 0.5, "soft", "must be in [0, 0.5]");
+  require(h.end_taper >= 0 && h.end_taper <= 100, "end_taper", "must be in [0, 100] pixels");
+  require(!h.body_tones.empty() && h.body_tones.size() <= 6, "body_tones",
+          "must list 1 to 6 tone levels");
+  for (size_t k = 0; k < h.body_tones.size(); ++k)
+    require(h.body_tones[k] > 0 && h.body_tones[k] <= 1 &&
+                (k == 0 || h.body_tones[k] < h.body_tones[k - 1]),
+            "body_tones", "must be descending, in (0, 1]");
+  require(h.body_spacing >= 1e-4 && h.body_spacing <= 1, "body_spacing",
+          "must be in [0.0001, 1] scene units");
+}
+
 void validate(const HairStyle& s) {
   require(s.geometry.width > 0 && s.geometry.width <= 1, "width",
           "must be a width in (0, 1] metres");
@@ -102,6 +132,7 @@ void validate(const HairStyle& s) {
   sim::validate_part(s.ink, "ink");
   sim::validate_part(s.base, "base");
   sim::validate_part(s.blur, "blur");
+  sim::validate_part(s.hatching, "hatching");
   const Lighting& l = s.shading.lighting;
   require(s.shading.model != ShadingModel::Lit || l.ambient + l.kajiya_diffuse + l.lambert > 0,
           "shading", "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");

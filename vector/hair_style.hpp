@@ -16,7 +16,9 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "vector/hair_shading.hpp"
 #include "vector/toon_ramp.hpp"
@@ -125,6 +127,35 @@ struct BlurStyle {
   double reference_size = 512;
 };
 
+// Pen hatching in the shadows (Costigan 2013, section 4.3.8, after Praun's tonal art maps;
+// vector/hatching.hpp): strokes laid in each wisp's own (along, across) coordinates, ordered once
+// by their effect on tone, a prefix of that order per tone band, cross-hatching in the darkest.
+struct HatchStyle {
+  bool enabled = false;
+  // Tone bands by the shading's x (light intensity over its maximum, vector/wisp_shader.hpp):
+  // band k is where x < tones[k] (descending), filled to ink coverage coverage[k] (ascending).
+  std::vector<double> tones = {0.62, 0.46, 0.32};
+  std::vector<double> coverage = {0.12, 0.24, 0.42};
+  bool cross = true;            // the darkest band adds strokes across the hair
+  double cross_angle_deg = 40;  // their angle to the hair
+  double width = 1.4;           // px of a frame whose shorter side is ink.reference_size
+  double length = 0.09;         // scene units along the hair (big strokes: Costigan's users)
+  double length_jitter = 0.35;  // +- this fraction of `length`
+  int lanes = 8;                // the coverage grid's columns across a wisp
+  double reach = 0.85;          // strokes keep within |u| <= reach across a wisp
+  int candidates = 10;          // random candidates per stroke; the best for tone is kept
+  double soft = 0.04;           // strokes fade in over this much x below their band's tone
+  double end_taper = 3;         // px (reference): strokes taper to 0 where they are clipped
+  Eigen::Vector3f color{0.10f, 0.06f, 0.05f};
+  std::uint64_t seed = 1;
+  // On the body (apps/render/body_hatching.hpp): cross-contour lines `body_spacing` scene units
+  // apart in the darkest band, one tone per band by the skin's half-Lambert shade (descending;
+  // the skin's shadow tone starts at 0.45).
+  bool body = true;
+  std::vector<double> body_tones = {0.52, 0.42, 0.3};
+  double body_spacing = 0.006;
+};
+
 struct HairStyle {
   // A wisp stands for a clump of hair: about 2.8 cm wide at the root, so that some 150 guides
   // cover a head.
@@ -144,6 +175,7 @@ struct HairStyle {
   InkStyle ink;
   BaseStyle base;
   BlurStyle blur;
+  HatchStyle hatching;
 };
 
 // Each throws std::invalid_argument("field: what") for the first field out of its range, the
@@ -155,6 +187,7 @@ void validate(const HighlightStyle& highlights);
 void validate(const InkStyle& ink);
 void validate(const BaseStyle& base);
 void validate(const BlurStyle& blur);
+void validate(const HatchStyle& hatching);
 void validate(const HairStyle& style);
 
 }  // namespace wisp::vector

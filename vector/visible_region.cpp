@@ -54,6 +54,26 @@ bool VisibleRegions::contains(int wisp, const Vector2d& p) const {
   return in;
 }
 
+bool VisibleRegions::crosses(int wisp, const Vector2d& a, const Vector2d& b) const {
+  if (wisp < 0 || wisp >= int(regions_.size())) return false;
+  const Region& r = regions_[wisp];
+  if (r.rows.empty()) return false;
+  const auto cross = [](const Vector2d& u, const Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  const int k0 = std::max(0, int(std::floor((std::min(a.y(), b.y()) - r.y0) / r.bin)));
+  const int k1 = std::min(int(r.rows.size()) - 1, int((std::max(a.y(), b.y()) - r.y0) / r.bin));
+  const Vector2d d = b - a;
+  for (int k = k0; k <= k1; ++k)
+    for (const Edge& e : r.rows[k]) {
+      const Vector2d f = e.b - e.a;
+      const double d1 = cross(d, e.a - a), d2 = cross(d, e.b - a);
+      const double d3 = cross(f, a - e.a), d4 = cross(f, b - e.a);
+      if ((d1 > 0) != (d2 > 0) && (d3 > 0) != (d4 > 0)) return true;
+    }
+  return false;
+}
+
 std::vector<std::pair<double, double>> VisibleRegions::active(int wisp,
                                                               const diffusion::BezierPath& path,
                                                               double step_px) const {

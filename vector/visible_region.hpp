@@ -22,6 +22,9 @@ class VisibleRegions {
   VisibleRegions(const ArrangementView& view, int wisp_count);
 
   bool contains(int wisp, const Eigen::Vector2d& p) const;
+  // Whether the segment a-b meets the boundary of the wisp's region (a sliver of another wisp
+  // can cross a segment whose two ends are inside).
+  bool crosses(int wisp, const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
 
   // Sorted disjoint parameter intervals of a path where it lies in the wisp's visible region.
   // Sampled so that consecutive samples are at most `step_px` apart; each change is located to

@@ -35,6 +35,25 @@ Eigen::Vector3d head_centre_from_roots(const std::vector<Eigen::Vector3d>& roots
   return centroid + c;
 }
 
+FrameLight frame_light(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
+                       const HairStyle& style) {
+  std::vector<Eigen::Vector3d> roots;
+  for (const sim::ProjectedStrand& s : frame.strands)
+    if (!s.world.empty()) roots.push_back(s.world.front());
+  FrameLight light;
+  light.head_centre = head_centre_from_roots(roots);
+  for (const Eigen::Vector3d& r : roots)
+    light.head_radius += (r - light.head_centre).norm() / double(roots.size());
+  light.light = frame.light_dir.norm() > 0 ? Eigen::Vector3d(frame.light_dir.normalized())
+                                           : Eigen::Vector3d::UnitZ();
+  double zmin = 1e300, zmax = 0;
+  for (const Wisp& w : wisps)
+    for (double z : w.centre.depth) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+  light.z_near = style.shading.depth_near > 0 ? style.shading.depth_near : zmin;
+  light.z_far = style.shading.depth_far > 0 ? style.shading.depth_far : zmax;
+  return light;
+}
+
 double WispShader::x(double t, double u) const {
   const Lighting& m = style_.shading.lighting;
   const double top = max_intensity(m);

@@ -27,6 +27,11 @@ struct FrameLight {
 // (roots lie on the scalp), or their centroid when they do not pin a sphere down.
 Eigen::Vector3d head_centre_from_roots(const std::vector<Eigen::Vector3d>& roots);
 
+// What the wisps of a frame share: its light, the depth range (the style's, or the nearest and
+// farthest of the wisps), the head's centre and radius from the strands' roots.
+FrameLight frame_light(const sim::ProjectedFrame& frame, const std::vector<Wisp>& wisps,
+                       const HairStyle& style);
+
 class WispShader {
  public:
   // `bands`: the ramp's bands, or null for the shadow -> hair blend.

@@ -49,10 +49,12 @@ std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones
 // cubic paths through the samples (centripetal Catmull-Rom, vector/bezier.hpp) with their widths.
 std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, const Rgb& color);
 
-// A frame's body layer: the skin's tone regions, then the face's lines.
+// A frame's body layer: the skin's tone regions, then the face's lines; and the projected
+// surfaces they were drawn from (for hatching on them, apps/render/body_hatching.hpp).
 struct BodyLayer {
   std::vector<BodyPath> paths;
   std::vector<InkStroke> face;
+  sim::ProjectedBody projected;
 };
 
 }  // namespace wisp::render

@@ -1,6 +1,6 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), highlights, ink strokes. With a blur map the hair, its mask's
+// mask (the base is part of it), highlights, hatch strokes, ink strokes. With a blur map the hair, its mask's
 // edge and the ink are reblurred (Orzan's reblur, vector/hair_blur.hpp); the body stays sharp.
 // The same picture is written as a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real
 // paths, the shading embedded as an image clipped by the silhouette, or flat per-wisp gradients)
@@ -48,6 +48,11 @@ struct InkStroke {
   std::vector<std::pair<double, double>> curve_width;
 };
 
+// A Bezier path with its full width as (s, px) stops as a stroke in `color`, with its flattening
+// (for tools that draw polylines) at the cubics' ends and thirds.
+InkStroke ink_stroke(const diffusion::BezierPath& path,
+                     const std::vector<std::pair<double, double>>& width, const Rgb& color);
+
 // A variable-width Bezier stroke as constant-width stroked paths, as the SVG draws it (one <path>
 // with stroke-width each, an editable stroke): the cubics are split (de Casteljau, exact geometry)
 // wherever the width, rounded to a multiple of `step` px, changes, and consecutive pieces of the
@@ -94,6 +99,8 @@ struct FramePicture {
   // hair (in PNGs the hair image covers it).
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
+  // Hatch strokes in the shadows (vector/hatching.hpp): over the hair and the body, under the ink.
+  std::vector<InkStroke> hatching;
   std::vector<InkStroke> ink;  // on top of everything
   // The blur map (vector/hair_blur.hpp): a Gaussian sigma in pixels per pixel of the frame, by
   // which the hair, its mask's edge and the ink over it are reblurred; empty: all sharp.

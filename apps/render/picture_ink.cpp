@@ -1,4 +1,5 @@
-// Variable-width Bezier ink strokes as constant-width pieces (see ink_pieces in picture.hpp).
+// Variable-width Bezier ink strokes: made from fitted paths, drawn as constant-width pieces (see
+// ink_stroke and ink_pieces in picture.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -6,6 +7,29 @@
 #include "vector/ink_strokes.hpp"
 
 namespace wisp::render {
+
+InkStroke ink_stroke(const diffusion::BezierPath& c,
+                     const std::vector<std::pair<double, double>>& width, const Rgb& color) {
+  InkStroke s;
+  s.color = color;
+  s.closed = c.closed();
+  s.curve.points = c.points;
+  s.curve_width = width;
+  const int k = c.piece_count();
+  for (int i = 0; i < k; ++i) {
+    const diffusion::Cubic q = c.piece(i);
+    for (int j = 0; j < 3; ++j) {
+      const double u = j / 3.0, sp = (i + u) / k;
+      s.points.push_back(diffusion::eval(q, u));
+      s.width.push_back(vector::width_at(width, sp));
+    }
+  }
+  if (!s.closed) {
+    s.points.push_back(c.points.back());
+    s.width.push_back(vector::width_at(width, 1.0));
+  }
+  return s;
+}
 
 std::vector<InkPiece> ink_pieces(const InkStroke& stroke, double step) {
   using vector::width_at;

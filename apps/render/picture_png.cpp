@@ -264,6 +264,7 @@ Surface draw(const FramePicture& pic) {
     cairo_paint(c);
     cairo_restore(c);
   }
+  draw_ink(c, pic.hatching);
   draw_ink(c, pic.ink);
   cairo_surface_flush(surface.get());
   return surface;

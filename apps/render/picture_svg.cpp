@@ -463,6 +463,10 @@ void highlights_layer(const Writer& w, LayerText& out) {
   }
 }
 
+void hatching_layer(const Writer& w, LayerText& out) {
+  ink_strokes(out.body, w.num, "hatching", w.pic.hatching);
+}
+
 void ink_layer(const Writer& w, LayerText& out) {
   blur_filters(out.defs, w.pic, w.num);
   ink_strokes(out.body, w.num, "ink", w.pic.ink, w.pic.blur.empty() ? nullptr : &w.pic);
@@ -487,6 +491,9 @@ const LayerEntry kLayers[] = {
     {{"hair-base", "hair base"}, "", hair_base_layer},
     {{"hair", "hair"}, "", hair_layer},
     {{"highlights", "highlights"}, "", highlights_layer},
+    {{"hatching", "hatching"},
+     " fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
+     hatching_layer},
     {{"ink", "ink"},
      " fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
      ink_layer},

@@ -1,6 +1,8 @@
 // The per-frame pipeline (see render_pipeline.hpp).
 #include "apps/render/render_pipeline.hpp"
 
+#include "apps/render/body_hatching.hpp"
+
 #include <algorithm>
 
 #include "diffusion/antialias.hpp"
@@ -56,31 +58,6 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
     out.push_back(std::move(r));
   }
   return out;
-}
-
-// A fitted ink curve as a picture stroke; its flattening (for tools that draw polylines) at the
-// cubics' ends and thirds.
-InkStroke ink_stroke(const vector::InkCurve& c, const vector::InkStyle& style) {
-  InkStroke s;
-  s.kind = c.silhouette ? "silhouette" : "occlusion";
-  s.color = style.color;
-  s.closed = c.closed();
-  s.curve.points = c.points;
-  s.curve_width = c.width;
-  const int k = c.piece_count();
-  for (int i = 0; i < k; ++i) {
-    const diffusion::Cubic q = c.piece(i);
-    for (int j = 0; j < 3; ++j) {
-      const double u = j / 3.0, sp = (i + u) / k;
-      s.points.push_back(diffusion::eval(q, u));
-      s.width.push_back(vector::width_at(c.width, sp));
-    }
-  }
-  if (!s.closed) {
-    s.points.push_back(c.points.back());
-    s.width.push_back(vector::width_at(c.width, 1.0));
-  }
-  return s;
 }
 
 // Mixes the two sides' colours in every hair pixel that a visible curve crosses, by area; pixels
@@ -154,8 +131,25 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   if (setup.style.ink.enabled()) {
     t0 = Clock::now();
     r.ink = vector::ink_curves(r.wisps, r.arrangement, setup.style.ink, W, H);
-    for (const vector::InkCurve& c : r.ink) pic.ink.push_back(ink_stroke(c, setup.style.ink));
+    for (const vector::InkCurve& c : r.ink) {
+      pic.ink.push_back(ink_stroke(c, c.width, setup.style.ink.color));
+      pic.ink.back().kind = c.silhouette ? "silhouette" : "occlusion";
+    }
     r.time.ink = ms_since(t0);
+  }
+  if (setup.style.hatching.enabled) {
+    t0 = Clock::now();
+    r.hatching = vector::hatch_hair(frame, r.wisps, r.arrangement, setup.style, W, H);
+    for (const vector::HatchStroke& h : r.hatching) {
+      pic.hatching.push_back(ink_stroke(h, h.width, setup.style.hatching.color));
+      pic.hatching.back().kind = "hair";
+    }
+    r.body_hatching = hatch_body(body.projected, r.arrangement.mask, setup.style, W, H);
+    for (const BodyHatch& h : r.body_hatching) {
+      pic.hatching.push_back(h.stroke);
+      pic.hatching.back().kind = "body";
+    }
+    r.time.hatching = ms_since(t0);
   }
 
   if (!r.curves.empty()) {

@@ -6,11 +6,14 @@
 //   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
 //   ink strokes along the silhouette and occlusion lines (vector/ink_strokes), and, when the
 //   style or the lens blurs, the blur map of the outlines' blur values (vector/hair_blur).
+//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes) and hatch strokes
+//   in the hair's shadows (vector/hatching).
 // Used by `wisp render` for every frame and by the inspector for the one it shows.
 #pragma once
 
 #include <vector>
 
+#include "apps/render/body_hatching.hpp"
 #include "apps/render/body_paths.hpp"
 #include "apps/render/picture.hpp"
 #include "diffusion/antialias.hpp"
@@ -20,6 +23,7 @@
 #include "vector/hair_blur.hpp"
 #include "vector/hair_curves.hpp"
 #include "vector/hair_style.hpp"
+#include "vector/hatching.hpp"
 #include "vector/ink_strokes.hpp"
 
 namespace wisp::render {
@@ -40,6 +44,7 @@ struct FrameTimings {
   double ink = 0;        // fitting the ink strokes
   double antialias = 0;  // re-sampling the pixels that visible curves cross
   double blur = 0;       // the blur values and the blur map's solve
+  double hatching = 0;   // laying and clipping the hatch strokes
 };
 
 struct FrameResult {
@@ -50,6 +55,8 @@ struct FrameResult {
   vector::HairCurveStats curve_stats;             // how many of each kind
   int base_curves = 0;                            // the hair base's, after the others
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
+  std::vector<vector::HatchStroke> hatching;      // picture.hatching's on the hair, then
+  std::vector<BodyHatch> body_hatching;           // its strokes on the body
   diffusion::Problem problem;                     // the rasterized constraints (inspector)
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;

@@ -82,7 +82,8 @@ BodyLayer frame_body(const SceneFrames& frames, int k) {
   const sim::HeadPose& pose = frames.anim.frames.at(k).head;
   const sim::Camera camera = sim::Camera::look_at(scene.camera);
   BodyLayer layer;
-  layer.paths = body_paths(frames.body->project(pose, camera, scene.light_dir), body_tones(scene));
+  layer.projected = frames.body->project(pose, camera, scene.light_dir);
+  layer.paths = body_paths(layer.projected, body_tones(scene));
   layer.face = face_strokes(frames.body->face(pose, camera), scene.render.face_color);
   return layer;
 }

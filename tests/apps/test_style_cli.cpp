@@ -282,7 +282,8 @@ TEST_CASE("bad style fields are refused with one line naming the field", "[cli][
       {{{"ink", {{"silhouette_width", -2}}}}, "style.ink.silhouette_width: must be a width"},
       {{{"ink", {{"occlusion_width", -0.5}}}}, "style.ink.occlusion_width"},
       {{{"preset", "tooon"}},
-       "style.preset: expected one of anime, faraj, soft, toon or a .json file, got \"tooon\" (did "
+       "style.preset: expected one of anime, faraj, hatch, soft, toon or a .json file, got "
+       "\"tooon\" (did "
        "you mean \"toon\"?)"},
       {{{"preset", "mine.json"}}, "mine.json: cannot open the style preset file"},
       {{{"ink", {{"widht", 2}}}}, "style.ink.widht: unknown field"},

@@ -34,7 +34,7 @@ fs::path temp_dir(const std::string& name) {
 }  // namespace
 
 TEST_CASE("every preset in data/styles loads, and scene fields override it", "[io][style]") {
-  for (const std::string p : {"faraj", "toon", "anime", "soft"}) {
+  for (const std::string p : {"faraj", "toon", "anime", "soft", "hatch"}) {
     INFO(p);
     const auto s = parse_scene({{"style", {{"preset", p}}}}, "scene.json");
     CHECK((s.style.shading.model == wisp::vector::ShadingModel::Faraj) == (p == "faraj"));
@@ -53,6 +53,14 @@ TEST_CASE("every preset in data/styles loads, and scene fields override it", "[i
   CHECK(wisp::vector::RampBands(*toon.style.shading.ramp, toon.style.shading.band_threshold)
             .edges()
             .size() == 2);
+  CHECK(!toon.style.hatching.enabled);
+  const auto hatch = parse_scene(
+      {{"style",
+        {{"preset", "hatch"}, {"hatching", {{"tones", {0.7, 0.4}}, {"coverage", {0.1, 0.3}}}}}}},
+      "scene.json");
+  CHECK(hatch.style.hatching.enabled);
+  CHECK(hatch.style.hatching.tones == std::vector<double>{0.7, 0.4});
+  CHECK(hatch.style.hatching.length == 0.09);  // the preset's, kept
 
   // Fields override the preset whatever their order; nested objects merge field by field.
   const auto mine = parse_scene(json::parse(R"({"style": {
@@ -125,6 +133,14 @@ TEST_CASE("bad style values name the field", "[io][style]") {
              Catch::Contains("style.highlights.threshold: must be in (0, 1)"));
   CHECK_THAT(error_of({{"style", {{"shading", {{"depth_near", 2}, {"depth_far", 1}}}}}}),
              Catch::Contains("style.shading.depth_far: must be greater than depth_near"));
+  CHECK_THAT(error_of({{"style", {{"hatching", {{"tones", {0.3, 0.5, 0.6}}}}}}}),
+             Catch::Contains("style.hatching.tones: must be descending, in (0, 1]"));
+  CHECK_THAT(error_of({{"style", {{"hatching", {{"coverage", {0.1, 0.2}}}}}}}),
+             Catch::Contains("style.hatching.coverage: must have one entry per tone level"));
+  CHECK_THAT(error_of({{"style", {{"hatching", {{"tones", 0.5}}}}}}),
+             Catch::Contains("style.hatching.tones: expected an array of numbers"));
+  CHECK_THAT(error_of({{"style", {{"hatching", {{"body_tones", {0.3, "a"}}}}}}}),
+             Catch::Contains("style.hatching.body_tones[1]: "));
   CHECK_THAT(error_of({{"style", {{"preset", 3}}}}), Catch::Contains("style.preset: expected"));
   CHECK_THAT(error_of({{"style", {{"preset", "sfot"}}}}),
              Catch::Contains("(did you mean \"soft\"?)"));
