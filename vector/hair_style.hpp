@@ -18,6 +18,7 @@
 #include <array>
 #include <memory>
 
+#include "vector/fur.hpp"
 #include "vector/hair_shading.hpp"
 #include "vector/toon_ramp.hpp"
 #include "vector/wisp.hpp"
@@ -127,6 +128,7 @@ struct HairStyle {
   HighlightStyle specular;
   InkStyle ink;
   BaseStyle base;
+  FurStyle fur;  // fur tufts, when the scene grows fur (vector/fur.hpp)
 };
 
 // Each throws std::invalid_argument("field: what") for the first field out of its range, the

@@ -49,10 +49,12 @@ std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones
 // cubic paths through the samples (centripetal Catmull-Rom, vector/bezier.hpp) with their widths.
 std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, const Rgb& color);
 
-// A frame's body layer: the skin's tone regions, then the face's lines.
+// A frame's body layer: the skin's tone regions, then the face's lines; and the fur growing on
+// it, which the picture draws over the hair (FramePicture::fur).
 struct BodyLayer {
   std::vector<BodyPath> paths;
   std::vector<InkStroke> face;
+  std::vector<vector::FurTuft> fur;
 };
 
 }  // namespace wisp::render

@@ -1,6 +1,6 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), ink strokes. The same picture is written as
+// mask (the base is part of it), fur tufts, ink strokes. The same picture is written as
 // a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real paths, the shading embedded as an
 // image clipped by the silhouette, or flat per-wisp gradients).
 #pragma once
@@ -16,6 +16,7 @@
 #include "diffusion/render.hpp"
 #include "sim/choices.hpp"
 #include "vector/arrangement.hpp"
+#include "vector/fur.hpp"
 
 namespace wisp::render {
 
@@ -76,6 +77,9 @@ struct FramePicture {
   // hair (in PNGs the hair image covers it).
   vector::HairMask base;
   Rgb base_color = Rgb::Zero();
+  // Fur tufts (vector/fur.hpp), back to front, over the hair and under the ink: each one filled
+  // path in its colour at its opacity.
+  std::vector<vector::FurTuft> fur;
   std::vector<InkStroke> ink;  // on top of everything
   // SVG only: the wisp outlines, in a hidden debug group, and the per-wisp regions of
   // --svg-style flat.

@@ -200,6 +200,16 @@ std::string format_frame_svg(const FramePicture& pic, SvgStyle style) {
   for (const diffusion::BezierPath& outline : pic.outlines)
     if (outline.piece_count() > 0) o << "  <path d=\"" << bezier_path(outline) << "\"/>\n";
   o << " </g>\n";
+  if (!pic.fur.empty()) {
+    o << " <g id=\"fur\" fill-rule=\"nonzero\" stroke=\"none\">\n";
+    for (const vector::FurTuft& tuft : pic.fur) {
+      o << "  <path d=\"";
+      for (const auto& loop : tuft.loops)
+        if (loop.size() >= 4) o << bezier_path({loop}, true) << ' ';
+      o << "\" fill=\"" << hex(tuft.color) << "\" fill-opacity=\"" << num(tuft.opacity) << "\"/>\n";
+    }
+    o << " </g>\n";
+  }
   ink_group(o, "ink", pic.ink);
   o << "</svg>\n";
   return o.str();
