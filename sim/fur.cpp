@@ -142,7 +142,12 @@ FurMotion simulate_fur(const FurModel& model, const FurParams& f, const Environm
   const size_t n = model.tufts.size();
   const double dt = 1.0 / f.step_rate;
   const Vector3d g = env.params().gravity;
-  std::vector<Vector3d> tip(n), vel(n, Vector3d::Zero()), root(n), rest(n), normal(n);
+  std::vector<Vector3d> tip(n), vel(n, Vector3d::Zero()), root(n), rest(n), normal(n), wind(n);
+  // The wind at each root, sampled once per frame: its gusts change over seconds, and sampling it
+  // every step cost most of the springs' time.
+  const auto sample_wind = [&](double t) {
+    for (size_t i = 0; i < n; ++i) wind[i] = env.wind(t, root[i]);
+  };
   const auto pose_at = [&](double t) {
     const HeadPose p = env.motion().pose(t);
     for (size_t i = 0; i < n; ++i) {
@@ -161,9 +166,8 @@ FurMotion simulate_fur(const FurModel& model, const FurParams& f, const Environm
     if (moving) pose_at(t + dt);
     for (size_t i = 0; i < n; ++i) {
       const Vector3d root_vel = (root[i] - prev_root[i]) / dt;
-      const Vector3d wind = env.wind(t, root[i]);
       const Vector3d a = f.stiffness * (rest[i] - tip[i]) - f.damping * (vel[i] - root_vel) + g +
-                         f.drag * (wind - vel[i]);
+                         f.drag * (wind[i] - vel[i]);
       const Vector3d v = vel[i] + dt * a;
       const Vector3d p = constrain(root[i], normal[i], tip[i] + dt * v, model.tufts[i].length);
       vel[i] = (p - tip[i]) / dt;
@@ -171,11 +175,13 @@ FurMotion simulate_fur(const FurModel& model, const FurParams& f, const Environm
     }
   };
   pose_at(times.front());
+  sample_wind(times.front());
   tip = rest;
   const long settle_steps = std::lround(settle * f.step_rate);
   for (long s = 0; s < settle_steps; ++s) step(times.front(), false);
   double t = times.front();
   for (double frame_time : times) {
+    sample_wind(t);
     // Whole steps up to the frame, then the frame at its own time.
     while (t + dt <= frame_time + 1e-12) {
       step(t, true);
