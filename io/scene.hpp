@@ -1,7 +1,7 @@
 // The scene file (JSON): one object with a part per concern: the physical parts `head`, `hair`,
-// `motion`, `sim` and `camera`, and the look: `style` (vector::HairStyle), `light` and `render`
-// (docs/scene.md lists every field, its default and unit). Every field is optional; unknown
-// fields, wrong types and out-of-range values are errors naming the file and the field
+// `fur`, `motion`, `sim` and `camera`, and the look: `style` (vector::HairStyle), `light` and
+// `render` (docs/scene.md lists every field, its default and unit). Every field is optional;
+// unknown fields, wrong types and out-of-range values are errors naming the file and the field
 // ("scene.json: hair.cuont: unknown field (did you mean \"count\"?)").
 #pragma once
 
@@ -11,6 +11,7 @@
 
 #include "sim/body.hpp"
 #include "sim/camera.hpp"
+#include "sim/fur.hpp"
 #include "sim/params.hpp"
 #include "sim/simulate.hpp"
 #include "vector/hair_style.hpp"
@@ -40,6 +41,7 @@ struct Scene {
   std::filesystem::path path;  // the scene file; relative file names inside resolve from its folder
   sim::HeadParams head;
   sim::HairParams hair;
+  sim::FurParams fur;  // short dense hair on the head (sim/fur.hpp); none by default
   sim::MotionParams motion;
   sim::SimParams sim;
   sim::CameraParams camera;

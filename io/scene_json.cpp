@@ -234,6 +234,26 @@ void parse_hair(Fields& f, Scene& s) {
   f.check(h);
 }
 
+void parse_fur(Fields& f, Scene& s) {
+  sim::FurParams& u = s.fur;
+  f.get("count", u.count);
+  f.get("length", u.length);
+  f.get("length_variation", u.length_variation);
+  f.get("strands", u.strands);
+  f.get("clump_radius", u.clump_radius);
+  f.get("clump", u.clump);
+  f.get("scalp_angle_deg", u.scalp_angle_deg);
+  f.get("face_angle_deg", u.face_angle_deg);
+  f.get("comb_direction", u.comb_direction);
+  f.get("comb", u.comb);
+  f.get("stiffness", u.stiffness);
+  f.get("damping", u.damping);
+  f.get("drag", u.drag);
+  f.get("step_rate", u.step_rate);
+  f.get("seed", u.seed);
+  f.check(u);
+}
+
 void parse_motion(Fields& f, Scene& s) {
   sim::MotionParams& m = s.motion;
   f.choice("preset", m.preset);
@@ -380,6 +400,15 @@ void parse_blur(Fields& f, vector::HairStyle& st) {
   f.get("reference_size", b.reference_size);
 }
 
+void parse_fur_style(Fields& f, vector::HairStyle& st) {
+  vector::FurStyle& u = st.fur;
+  f.get("strand_width", u.strand_width);
+  f.get("fin_band", u.fin_band);
+  f.get("interior_opacity", u.interior_opacity);
+  f.get("max_opacity", u.max_opacity);
+  f.get("min_width_px", u.min_width_px);
+}
+
 void parse_base(Fields& f, vector::HairStyle& st) {
   vector::BaseStyle& b = st.base;
   f.get("enabled", b.enabled);
@@ -467,6 +496,7 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
       {"base", style_object<parse_base>},
       {"blur", style_object<parse_blur>},
       {"hatching", style_object<parse_hatching>},
+      {"fur", style_object<parse_fur_style>},
   };
   return table;
 }
@@ -563,9 +593,9 @@ void parse_render(Fields& f, Scene& s) {
 // The parts of a scene.
 const std::map<std::string, std::function<void(Fields&, Scene&)>>& parts() {
   static const std::map<std::string, std::function<void(Fields&, Scene&)>> table = {
-      {"head", parse_head},   {"hair", parse_hair},     {"motion", parse_motion},
-      {"sim", parse_sim},     {"camera", parse_camera}, {"style", parse_style},
-      {"light", parse_light}, {"render", parse_render},
+      {"head", parse_head},     {"hair", parse_hair},   {"fur", parse_fur},
+      {"motion", parse_motion}, {"sim", parse_sim},     {"camera", parse_camera},
+      {"style", parse_style},   {"light", parse_light}, {"render", parse_render},
   };
   return table;
 }

@@ -51,8 +51,9 @@ void validate(const HairParams& h) {
   const bool procedural = h.source == HairSource::Procedural;
   require(procedural || !h.file.empty(), "file",
           std::string("source \"") + choice_name(h.source) + "\" needs a strand file name");
-  require(procedural ? h.count >= 1 : h.count >= 0, "count",
-          std::string("must be ") + (procedural ? "at least 1" : ">= 0 (0 = all strands)") +
+  // Procedural hair may be left out (count 0) on a head that only grows fur (sim/fur.hpp).
+  require(h.count >= 0, "count",
+          std::string("must be ") + (procedural ? ">= 0 (0 = no hair)" : ">= 0 (0 = all strands)") +
               ", got " + std::to_string(h.count));
   require(h.count <= 100000, "count", "at most 100000 guides");
   require(h.guides >= 0 && h.guides <= 100000, "guides",

@@ -165,8 +165,8 @@ struct CameraParams {
 };
 
 // Each validate() throws std::invalid_argument("field: what") for the first field out of its
-// range, non-finite, or inconsistent with another ("count: must be at least 1, got 0"). Whoever
-// reads the struct from somewhere puts the place in front: io/ the file and the part
+// range, non-finite, or inconsistent with another ("count: must be >= 0 (0 = all strands), got
+// -1"). Whoever reads the struct from somewhere puts the place in front: io/ the file and the part
 // ("scene.json: hair.count: ..."), sim's entry points the part (validate_part).
 void validate(const HeadParams& head);
 void validate(const HairParams& hair);

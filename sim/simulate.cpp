@@ -110,7 +110,6 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   validate_part(setup.sim, "sim");
   if (!(setup.duration > 0) || !std::isfinite(setup.duration))
     throw std::invalid_argument("motion.duration: must be a positive number of seconds");
-  if (setup.rest.empty()) throw std::invalid_argument("hair: the hair model has no strands");
   if (!setup.widths.empty()) {
     bool fits = setup.widths.size() == setup.rest.size();
     for (std::size_t s = 0; fits && s < setup.rest.size(); ++s)
@@ -132,10 +131,12 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   }
   const Environment env(setup);
   const SimParams& sp = setup.sim;
+  // No strands (a head that only grows fur, sim/fur.hpp): the frames carry the head's poses.
   std::unique_ptr<StrandSolver> solver =
-      sp.model == SimModel::Featherstone ? make_featherstone_solver(env, setup.rest)
-      : sp.model == SimModel::Rope       ? make_rope_solver(env, setup.rest)
-                                         : make_dftl_solver(env, setup.rest);
+      setup.rest.empty()                   ? nullptr
+      : sp.model == SimModel::Featherstone ? make_featherstone_solver(env, setup.rest)
+      : sp.model == SimModel::Rope         ? make_rope_solver(env, setup.rest)
+                                           : make_dftl_solver(env, setup.rest);
   const double dt = 1.0 / sp.step_rate;
   const int frames = animation_frame_count(setup);
   Animation anim;
@@ -149,6 +150,7 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
   for (int f = 0; f < frames; ++f) {
     // Frame f shows the state at the physics step nearest its time.
     const long target = std::lround(f / sp.fps * sp.step_rate);
+    if (!solver) step = target;
     for (; step < target; ++step) {
       solver->step(step * dt, dt);
       const double v = solver->max_speed();
@@ -166,7 +168,7 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
     frame.frame = f;
     frame.time = step * dt;
     frame.head = env.motion().pose(frame.time);
-    solver->positions(frame.strands);
+    if (solver) solver->positions(frame.strands);
     anim.frames.push_back(std::move(frame));
     if (progress) progress(f + 1, frames);
   }

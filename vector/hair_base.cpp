@@ -83,6 +83,17 @@ std::vector<diffusion::DiffusionCurve> base_curves(
     diffusion::DiffusionCurve c;
     c.points = base.paths[i].points;
     c.left = {{0.0, color}, {1.0, color}};
+    if (base.shade && i < base.rings.size() && i < base.ring_s.size()) {
+      const std::vector<Eigen::Vector2d>& ring = base.rings[i];
+      c.left.clear();
+      Eigen::Vector2d last(INFINITY, INFINITY);
+      for (size_t k = 0; k < ring.size(); ++k)
+        if ((ring[k] - last).norm() >= 3 || k == 0) {
+          c.left.push_back({base.ring_s[i][k], base.shade(ring[k])});
+          last = ring[k];
+        }
+      c.left.push_back({1.0, c.left.front().color});  // closed: back to the start's colour
+    }
     c.right = c.left;
     c.right_boundary = diffusion::Boundary::Neumann;
     c.active = visible[i];

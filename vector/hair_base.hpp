@@ -28,6 +28,8 @@ struct HairBase {
   std::vector<std::vector<double>> ring_s;
   // Distance from the eye to the base seen through a pixel (+infinity off it).
   std::function<double(const Eigen::Vector2d&)> depth;
+  // The base's colour seen through a pixel on it (a lit coat, vector/fur.hpp); empty: one colour.
+  std::function<Eigen::Vector3f(const Eigen::Vector2d&)> shade;
 
   bool empty() const { return paths.empty(); }
 };
@@ -48,8 +50,9 @@ HairBase trace_hair_base(const std::function<double(const Eigen::Vector2d&)>& fi
 // The base's colour in the style (BaseStyle).
 Eigen::Vector3f base_color(const HairStyle& style);
 
-// One diffusion curve per path: the base's colour on its inside (diffusion's left), an insulating
-// (Neumann) outside, so it constrains only the base; active on `visible[i]` (the arrangement's
+// One diffusion curve per path: the base's colour on its inside (diffusion's left), or with
+// `base.shade` its colour at points about 3 px apart along the path, an insulating (Neumann)
+// outside, so it constrains only the base; active on `visible[i]` (the arrangement's
 // WispArrangement::base_visible). Paths with no visible interval give no curve.
 std::vector<diffusion::DiffusionCurve> base_curves(
     const HairBase& base, const std::vector<std::vector<std::pair<double, double>>>& visible,

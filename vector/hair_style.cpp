@@ -133,6 +133,7 @@ void validate(const HairStyle& s) {
   sim::validate_part(s.base, "base");
   sim::validate_part(s.blur, "blur");
   sim::validate_part(s.hatching, "hatching");
+  sim::validate_part(s.fur, "fur");
   const Lighting& l = s.shading.lighting;
   require(s.shading.model != ShadingModel::Lit || l.ambient + l.kajiya_diffuse + l.lambert > 0,
           "shading", "lit shading needs a positive ambient, kajiya_diffuse or lambert weight");

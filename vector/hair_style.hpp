@@ -20,6 +20,7 @@
 #include <memory>
 #include <vector>
 
+#include "vector/fur.hpp"
 #include "vector/hair_shading.hpp"
 #include "vector/toon_ramp.hpp"
 #include "vector/wisp.hpp"
@@ -176,6 +177,7 @@ struct HairStyle {
   BaseStyle base;
   BlurStyle blur;
   HatchStyle hatching;
+  FurStyle fur;  // fur tufts, when the scene grows fur (vector/fur.hpp)
 };
 
 // Each throws std::invalid_argument("field: what") for the first field out of its range, the

@@ -49,12 +49,14 @@ std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones
 // cubic paths through the samples (centripetal Catmull-Rom, vector/bezier.hpp) with their widths.
 std::vector<InkStroke> face_strokes(const std::vector<sim::FaceStroke>& runs, const Rgb& color);
 
-// A frame's body layer: the skin's tone regions, then the face's lines; and the projected
-// surfaces they were drawn from (for hatching on them, apps/render/body_hatching.hpp).
+// A frame's body layer: the skin's tone regions, then the face's lines; the projected surfaces
+// they were drawn from (for hatching on them, apps/render/body_hatching.hpp); and the fur growing
+// on it, which the picture draws over the hair (FramePicture::fur).
 struct BodyLayer {
   std::vector<BodyPath> paths;
   std::vector<InkStroke> face;
   sim::ProjectedBody projected;
+  std::vector<vector::FurTuft> fur;
 };
 
 }  // namespace wisp::render

@@ -1,6 +1,6 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), highlights, hatch strokes, ink strokes. With a blur map the hair, its mask's
+// mask (the base is part of it), highlights, hatch strokes, fur tufts, ink strokes. With a blur map the hair, its mask's
 // edge and the ink are reblurred (Orzan's reblur, vector/hair_blur.hpp); the body stays sharp.
 // The same picture is written as a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real
 // paths, the shading embedded as an image clipped by the silhouette, or flat per-wisp gradients)
@@ -19,6 +19,7 @@
 #include "diffusion/render.hpp"
 #include "sim/choices.hpp"
 #include "vector/arrangement.hpp"
+#include "vector/fur.hpp"
 
 namespace wisp::render {
 
@@ -101,6 +102,9 @@ struct FramePicture {
   Rgb base_color = Rgb::Zero();
   // Hatch strokes in the shadows (vector/hatching.hpp): over the hair and the body, under the ink.
   std::vector<InkStroke> hatching;
+  // Fur tufts (vector/fur.hpp), back to front, over the hair and under the ink: each one filled
+  // path in its colour at its opacity.
+  std::vector<vector::FurTuft> fur;
   std::vector<InkStroke> ink;  // on top of everything
   // The blur map (vector/hair_blur.hpp): a Gaussian sigma in pixels per pixel of the frame, by
   // which the hair, its mask's edge and the ink over it are reblurred; empty: all sharp.

@@ -265,6 +265,14 @@ Surface draw(const FramePicture& pic) {
     cairo_restore(c);
   }
   draw_ink(c, pic.hatching);
+  // Fur: one fill per tuft, its strands in one path, so they do not darken where they overlap.
+  for (const vector::FurTuft& tuft : pic.fur) {
+    cairo_new_path(c);
+    for (const auto& loop : tuft.loops)
+      if (loop.size() >= 4) bezier_path(c, {loop}, true);
+    cairo_set_source_rgba(c, tuft.color[0], tuft.color[1], tuft.color[2], tuft.opacity);
+    cairo_fill(c);
+  }
   draw_ink(c, pic.ink);
   cairo_surface_flush(surface.get());
   return surface;

@@ -467,6 +467,18 @@ void hatching_layer(const Writer& w, LayerText& out) {
   ink_strokes(out.body, w.num, "hatching", w.pic.hatching);
 }
 
+// Fur tufts back to front, each one nonzero-filled path (its strands' loops) at its opacity.
+void fur_layer(const Writer& w, LayerText& out) {
+  int n = 0;
+  for (const vector::FurTuft& tuft : w.pic.fur) {
+    PathData d(w.num);
+    for (const auto& loop : tuft.loops)
+      if (loop.size() >= 4) bezier_path(d, {loop}, true);
+    out.body << "<path id=\"tuft-" << ++n << "\" d=\"" << d.str() << "\" fill=\"" << hex(tuft.color)
+             << "\" fill-opacity=\"" << w.num(tuft.opacity) << "\"/>\n";
+  }
+}
+
 void ink_layer(const Writer& w, LayerText& out) {
   blur_filters(out.defs, w.pic, w.num);
   ink_strokes(out.body, w.num, "ink", w.pic.ink, w.pic.blur.empty() ? nullptr : &w.pic);
@@ -494,6 +506,7 @@ const LayerEntry kLayers[] = {
     {{"hatching", "hatching"},
      " fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
      hatching_layer},
+    {{"fur", "fur"}, " fill-rule=\"nonzero\" stroke=\"none\"", fur_layer},
     {{"ink", "ink"},
      " fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
      ink_layer},

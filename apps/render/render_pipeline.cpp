@@ -118,6 +118,7 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
   pic.background = setup.background;
   pic.body = std::move(body.paths);
   pic.face = std::move(body.face);
+  pic.fur = std::move(body.fur);
   pic.mask = r.arrangement.mask;
   pic.base = r.arrangement.base_region;
   pic.base_color = base_color;

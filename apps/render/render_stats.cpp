@@ -21,6 +21,7 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
           {"time", frames.anim.frames[k].time},
           {"strands", frames.projected[k].strands.size()},
           {"wisps", r.wisps.size()},
+          {"fur_tufts", r.picture.fur.size()},
           {"visible_curves", r.curves.size()},
           {"curve_kinds",
            {{"outlines", r.curve_stats.outlines},

@@ -4,6 +4,10 @@
 
 #include "apps/render/body_occluders.hpp"
 
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 
@@ -11,6 +15,7 @@
 #include "io/drawing_xml.hpp"
 #include "sim/camera.hpp"
 #include "sim/simulate.hpp"
+#include "sim/solver.hpp"
 
 namespace wisp::render {
 
@@ -27,11 +32,19 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
     scene.camera.width = options.width;
     scene.camera.height = options.height;
   }
+  std::optional<sim::SimSetup> setup;
+  if (options.anim.empty() || scene.fur.count > 0) setup = load_sim_setup(scene);
   if (!options.anim.empty()) {
     out.anim = io::read_animation(options.anim);
   } else {
-    const sim::SimSetup setup = load_sim_setup(scene);
-    out.anim = sim::simulate(setup, options.sim_progress);
+    out.anim = sim::simulate(*setup, options.sim_progress);
+  }
+  if (scene.fur.count > 0) {
+    out.fur = std::make_shared<const sim::FurModel>(
+        sim::make_fur(scene.fur, sim::HeadShape(out.anim.head)));
+    std::vector<double> times;
+    for (const sim::StrandFrame& f : out.anim.frames) times.push_back(f.time);
+    out.fur_motion = sim::simulate_fur(*out.fur, scene.fur, sim::Environment(*setup), times);
   }
 
   // In order: each frame's head occlusion starts from the previous frame's (hysteresis).
@@ -46,7 +59,10 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
     out.body = std::make_shared<const sim::BodyModel>(out.anim.head, body);
   const vector::BaseStyle& base = scene.style.base;
   if (base.enabled && !out.anim.frames.empty()) {
+    // The base coat lies under the hair and the fur alike.
     std::vector<Eigen::Vector3d> roots = sim::local_roots(out.anim.frames.front());
+    if (out.fur)
+      for (const sim::FurTuftRest& t : out.fur->tufts) roots.push_back(t.root);
     if (!roots.empty()) {
       out.scalp = std::make_shared<const sim::Scalp>(std::move(roots), base.spread);
       // Any body model tessellates the head; a scene that draws no body still gets one.
@@ -76,8 +92,22 @@ BodyTones body_tones(const io::Scene& scene) {
   return tones;
 }
 
+std::vector<vector::FurTuft> frame_fur(const SceneFrames& frames, int k) {
+  if (!frames.fur) return {};
+  const io::Scene& scene = frames.scene;
+  const vector::FurStyle& style = scene.style.fur;
+  // Tufts beyond the fin band are transparent unless the style lays them over the front.
+  const double max_facing = style.interior_opacity > 0 ? 1.0 : style.fin_band;
+  const sim::ProjectedFur fur =
+      sim::project_fur(*frames.fur, frames.fur_motion.tips.at(k), frames.anim.frames.at(k).head,
+                       sim::Camera::look_at(scene.camera), scene.light_dir, max_facing);
+  return vector::fur_tufts(fur, scene.style);
+}
+
 BodyLayer frame_body(const SceneFrames& frames, int k) {
-  if (!frames.body) return {};
+  BodyLayer layer;
+  layer.fur = frame_fur(frames, k);
+  if (!frames.body) return layer;
   const io::Scene& scene = frames.scene;
   const sim::HeadPose& pose = frames.anim.frames.at(k).head;
   const sim::Camera camera = sim::Camera::look_at(scene.camera);
@@ -95,6 +125,39 @@ std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) 
                         frames.scene.style.geometry.width);
 }
 
+namespace {
+
+// The fur's coat seen through a pixel: the lit colour (vector::coat_color) of the head point
+// there, with the fur's combed direction; off the head (the base's outline runs along the
+// silhouette), the head's point nearest the eye ray.
+std::function<Eigen::Vector3f(const Eigen::Vector2d&)> coat_shade(
+    const SceneFrames& frames, const sim::HeadPose& pose, const sim::Camera& camera,
+    std::shared_ptr<const sim::ScalpView> view) {
+  const sim::HeadShape& head = frames.head->head();
+  const Eigen::Vector3d centre = pose.to_world(head.center());
+  return [&frames, &head, pose, camera, centre, view](const Eigen::Vector2d& p) {
+    const Eigen::Vector3d ray =
+        (camera.focal_px * camera.forward + (p.x() - 0.5 * camera.width) * camera.right -
+         (p.y() - 0.5 * camera.height) * camera.up)
+            .normalized();
+    const double depth = view->depth(p);
+    Eigen::Vector3d local;
+    if (std::isfinite(depth)) {
+      local = pose.to_local(camera.eye + depth * ray);
+    } else {
+      const Eigen::Vector3d nearest = camera.eye + (centre - camera.eye).dot(ray) * ray;
+      local = head.surface_point(pose.to_local(nearest) - head.center());
+    }
+    Eigen::Vector3d n;
+    head.distance(local, &n);
+    n.normalize();
+    const Eigen::Vector3d T = pose.rotation * sim::fur_direction(n, frames.scene.fur);
+    return vector::coat_color(T, pose.rotation * n, frames.scene.light_dir, frames.scene.style);
+  };
+}
+
+}  // namespace
+
 vector::HairBase frame_base(const SceneFrames& frames, int k) {
   if (!frames.scalp || !frames.head) return {};
   const io::Scene& scene = frames.scene;
@@ -109,9 +172,11 @@ vector::HairBase frame_base(const SceneFrames& frames, int k) {
   if (box.isEmpty()) return {};
   vector::HairBaseOptions options;
   options.cell_px = std::max(1.0, std::min(camera.width, camera.height) / 512.0);
-  return vector::trace_hair_base([&](const Eigen::Vector2d& p) { return view->field(p); },
-                                 [view](const Eigen::Vector2d& p) { return view->depth(p); }, box,
-                                 options);
+  vector::HairBase base = vector::trace_hair_base(
+      [&](const Eigen::Vector2d& p) { return view->field(p); },
+      [view](const Eigen::Vector2d& p) { return view->depth(p); }, box, options);
+  if (frames.fur) base.shade = coat_shade(frames, pose, camera, view);
+  return base;
 }
 
 const sim::ProjectedFrame* motion_neighbour(const SceneFrames& frames, int k) {

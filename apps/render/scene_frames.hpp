@@ -1,10 +1,10 @@
 // From a scene file to the frames the renderer draws: the scene (with an optional image size
 // override), its animation (simulated now, or read back from a saved .wsim), every frame projected
 // in order (the occlusion hysteresis follows the frames, so frame k projects the same whichever
-// frame a tool asks for first), and per frame the body under the hair and as occluder of it, and
-// the hair base (the scalp under the wisps, sim/scalp.hpp, vector/hair_base.hpp). Shared
-// by `wisp render` and `wisp-inspect`, so the inspector shows exactly the frames the renderer
-// writes.
+// frame a tool asks for first), the fur's springs run over the frames, and per frame the body under
+// the hair and as occluder of it, and the hair base (the scalp under the wisps, sim/scalp.hpp,
+// vector/hair_base.hpp). Shared by `wisp render` and `wisp-inspect`, so the inspector shows exactly
+// the frames the renderer writes.
 #pragma once
 
 #include <filesystem>
@@ -20,6 +20,7 @@
 #include "io/scene.hpp"
 #include "sim/animation.hpp"
 #include "sim/body.hpp"
+#include "sim/fur.hpp"
 #include "sim/projected.hpp"
 #include "sim/scalp.hpp"
 #include "vector/hair_base.hpp"
@@ -42,6 +43,9 @@ struct SceneFrames {
   // null when the style has no base.
   std::shared_ptr<const sim::Scalp> scalp;
   std::shared_ptr<const sim::BodyModel> head;
+  // The scene's fur (sim/fur.hpp) and its tufts' tips per frame; null when it grows none.
+  std::shared_ptr<const sim::FurModel> fur;
+  sim::FurMotion fur_motion;
 
   int frame_count() const { return int(projected.size()); }
 };
@@ -59,8 +63,12 @@ FrameSetup frame_setup(const io::Scene& scene);
 BodyTones body_tones(const io::Scene& scene);
 
 // The body under the hair in frame k: seamless paths of two flat skin tones, back to front, and
-// the face's lines (apps/render/body_paths.hpp).
+// the face's lines (apps/render/body_paths.hpp), and the fur's tufts (frame_fur).
 BodyLayer frame_body(const SceneFrames& frames, int k);
+
+// The fur's tufts in frame k (vector/fur.hpp): those within the style's fin band of the
+// silhouette, or all in front with an interior opacity; none when the scene grows no fur.
+std::vector<vector::FurTuft> frame_fur(const SceneFrames& frames, int k);
 
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
 // the scene draws no body.

@@ -282,11 +282,12 @@ TEST_CASE("bad style fields are refused with one line naming the field", "[cli][
       {{{"ink", {{"silhouette_width", -2}}}}, "style.ink.silhouette_width: must be a width"},
       {{{"ink", {{"occlusion_width", -0.5}}}}, "style.ink.occlusion_width"},
       {{{"preset", "tooon"}},
-       "style.preset: expected one of anime, faraj, hatch, soft, toon or a .json file, got "
+       "style.preset: expected one of anime, faraj, fur, hatch, soft, toon or a .json file, got "
        "\"tooon\" (did "
        "you mean \"toon\"?)"},
       {{{"preset", "mine.json"}}, "mine.json: cannot open the style preset file"},
       {{{"ink", {{"widht", 2}}}}, "style.ink.widht: unknown field"},
+      {{{"fur", {{"fin_band", 0}}}}, "style.fur.fin_band: must be in (0, 1]"},
       {{{"highlights", {{"shape", "zigzag"}}}},
        "style.highlights.shape: expected one of none, band, anime"},
       {{{"shading", {{"model", "lit"}, {"ambient", 0}, {"kajiya_diffuse", 0}, {"lambert", 0}}}},

@@ -75,7 +75,10 @@ TEST_CASE("defaults are valid and validate() names the first bad field", "[sim][
   CHECK(invalid(head) == "mesh: shape \"mesh\" needs an OBJ file name");
   HairParams hair;
   hair.count = 0;
-  CHECK(invalid(hair) == "count: must be at least 1, got 0");
+  CHECK(invalid(hair).empty());  // no hair: a head that only grows fur
+  hair.count = -1;
+  CHECK(invalid(hair) == "count: must be >= 0 (0 = no hair), got -1");
+  hair.count = 0;
   hair.source = HairSource::Json;
   CHECK(invalid(hair) == "file: source \"json\" needs a strand file name");
   hair.file = "strands.json";
