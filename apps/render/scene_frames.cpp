@@ -111,7 +111,6 @@ BodyLayer frame_body(const SceneFrames& frames, int k) {
   const io::Scene& scene = frames.scene;
   const sim::HeadPose& pose = frames.anim.frames.at(k).head;
   const sim::Camera camera = sim::Camera::look_at(scene.camera);
-  BodyLayer layer;
   layer.projected = frames.body->project(pose, camera, scene.light_dir);
   layer.paths = body_paths(layer.projected, body_tones(scene));
   layer.face = face_strokes(frames.body->face(pose, camera), scene.render.face_color);
