@@ -1,11 +1,11 @@
 // A finished frame as layers of plain geometry, in pixels, back to front: background, body
 // (skin tones, then the face's lines), the hair base, the smooth-shaded hair clipped by the hair
-// mask (the base is part of it), highlights, hatch strokes, fur tufts, ink strokes. With a blur map the hair, its mask's
-// edge and the ink are reblurred (Orzan's reblur, vector/hair_blur.hpp); the body stays sharp.
-// The same picture is written as a PNG (rasterised by Cairo, anti-aliased) and as an SVG (real
-// paths, the shading embedded as an image clipped by the silhouette, or flat per-wisp gradients)
-// whose layers are Inkscape layers (svg_layers()); frames' SVGs become one animated SVG in
-// apps/render/svg_animation.hpp.
+// mask (the base is part of it), highlights, hatch strokes, fur tufts, ink strokes. With a blur map
+// the hair, its mask's edge and the ink are reblurred (Orzan's reblur, vector/hair_blur.hpp); the
+// body stays sharp. The same picture is written as a PNG (rasterised by Cairo, anti-aliased) and as
+// an SVG (real paths, the shading embedded as an image clipped by the silhouette, or flat per-wisp
+// gradients) whose layers are Inkscape layers (svg_layers()); frames' SVGs become one animated SVG
+// in apps/render/svg_animation.hpp.
 #pragma once
 
 #include <Eigen/Core>

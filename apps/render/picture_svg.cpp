@@ -284,7 +284,8 @@ void ink_strokes(std::ostringstream& o, const Num& num, const std::string& prefi
       }
       out << "<g id=\"" << id << "\" stroke=\"" << color << "\">";
       for (const InkPiece& p : pieces)
-        out << "<path d=\"" << bezier_path(num, p) << "\" stroke-width=\"" << num(p.width) << "\"/>";
+        out << "<path d=\"" << bezier_path(num, p) << "\" stroke-width=\"" << num(p.width)
+            << "\"/>";
       out << "</g>\n";
     } else if (ink.points.size() >= 2 && ink.width.size() == ink.points.size()) {
       out << "<path id=\"" << id << "\" d=\"" << ink_outline(num, ink) << "\" fill=\""
@@ -387,8 +388,8 @@ std::vector<std::pair<double, Rgb>> needed_stops(const std::vector<std::pair<dou
 void hair_layer(const Writer& w, LayerText& out) {
   const FramePicture& pic = w.pic;
   if (w.style == SvgStyle::Embedded && !pic.blurred_hair.empty()) {
-    out.body << "<image id=\"hair-shading\" x=\"0\" y=\"0\" width=\"" << pic.width
-             << "\" height=\"" << pic.height << "\" preserveAspectRatio=\"none\" xlink:href=\""
+    out.body << "<image id=\"hair-shading\" x=\"0\" y=\"0\" width=\"" << pic.width << "\" height=\""
+             << pic.height << "\" preserveAspectRatio=\"none\" xlink:href=\""
              << rgba_data_uri(pic.blurred_hair, pic.width, pic.height) << "\"/>\n";
     return;
   }
