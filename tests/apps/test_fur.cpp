@@ -13,6 +13,7 @@
 #include "apps/render/scene_frames.hpp"
 #include "diffusion/bezier.hpp"
 #include "run_command.hpp"
+#include "scene_fixture.hpp"
 
 namespace render = wisp::render;
 namespace sim = wisp::sim;
@@ -26,28 +27,11 @@ const std::string kScene = WISP_SOURCE_DIR "/data/scenes/fur.json";
 constexpr int kSize = 512;
 
 const render::SceneFrames& frames() {
-  static const render::SceneFrames f = [] {
-    render::SceneFramesOptions o;
-    o.anim = wisp::test::simulated(kScene);
-    o.width = o.height = kSize;
-    return render::load_scene_frames(kScene, o);
-  }();
-  return f;
+  return wisp::test::loaded_scene(kScene, kSize);
 }
 
-// Five frames spread over the head's turn: the extremes of its yaw, the middle, and between.
 std::vector<int> five_angles() {
-  const auto& anim = frames().anim;
-  std::vector<std::pair<double, int>> yaw;
-  for (int k = 0; k < int(anim.frames.size()); ++k) {
-    const Vector3d f = anim.frames[k].head.rotation * Vector3d::UnitZ();
-    yaw.emplace_back(std::atan2(f.x(), f.z()), k);
-  }
-  std::sort(yaw.begin(), yaw.end());
-  std::vector<int> out;
-  for (double q : {0.0, 0.25, 0.5, 0.75, 1.0})
-    out.push_back(yaw[size_t(std::lround(q * (yaw.size() - 1)))].second);
-  return out;
+  return wisp::test::five_angles(frames().anim);
 }
 
 // The silhouette of the ellipsoid head x^T A x = 1 (A = diag(1/r^2)) seen from head-local eye e:

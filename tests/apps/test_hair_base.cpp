@@ -10,6 +10,7 @@
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
 #include "run_command.hpp"
+#include "scene_fixture.hpp"
 #include "vector/polygon.hpp"
 
 namespace render = wisp::render;
@@ -22,28 +23,11 @@ const std::string kScene = WISP_SOURCE_DIR "/data/scenes/bob.json";
 constexpr int kSize = 320;
 
 const render::SceneFrames& frames() {
-  static const render::SceneFrames f = [] {
-    render::SceneFramesOptions o;
-    o.anim = wisp::test::simulated(kScene);
-    o.width = o.height = kSize;
-    return render::load_scene_frames(kScene, o);
-  }();
-  return f;
+  return wisp::test::loaded_scene(kScene, kSize);
 }
 
-// Five frames spread over the head's turn: the extremes of its yaw, the middle, and between.
 std::vector<int> five_angles() {
-  const auto& anim = frames().anim;
-  std::vector<std::pair<double, int>> yaw;
-  for (int k = 0; k < int(anim.frames.size()); ++k) {
-    const Eigen::Vector3d f = anim.frames[k].head.rotation * Eigen::Vector3d::UnitZ();
-    yaw.emplace_back(std::atan2(f.x(), f.z()), k);
-  }
-  std::sort(yaw.begin(), yaw.end());
-  std::vector<int> out;
-  for (double q : {0.0, 0.25, 0.5, 0.75, 1.0})
-    out.push_back(yaw[size_t(std::lround(q * (yaw.size() - 1)))].second);
-  return out;
+  return wisp::test::five_angles(frames().anim);
 }
 
 double distance_to_rings(const std::vector<std::vector<Vector2d>>& rings, const Vector2d& p) {

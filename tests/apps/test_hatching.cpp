@@ -16,6 +16,7 @@
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
 #include "run_command.hpp"
+#include "scene_fixture.hpp"
 #include "vector/hatching.hpp"
 #include "vector/ink_strokes.hpp"
 #include "vector/polygon.hpp"
@@ -34,13 +35,7 @@ const std::string kScene = WISP_SOURCE_DIR "/data/scenes/hatch.json";
 constexpr int kSize = 320;
 
 const render::SceneFrames& frames() {
-  static const render::SceneFrames f = [] {
-    render::SceneFramesOptions o;
-    o.anim = wisp::test::simulated(kScene);
-    o.width = o.height = kSize;
-    return render::load_scene_frames(kScene, o);
-  }();
-  return f;
+  return wisp::test::loaded_scene(kScene, kSize);
 }
 
 // Frame k as `wisp render` draws it, with the arrangement's faces kept.
