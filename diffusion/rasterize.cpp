@@ -211,7 +211,9 @@ struct Rasterizer {
         if (seen[direction]) continue;  // a farther claim on the same link: hidden
         seen[direction] = true;
         if (is_neumann(claims[k])) continue;  // the link's nearest side imposes no colour
-        const double w = 1.0 / claims[k].distance;
+        // Bounded like a fixing claim's: behind a Neumann claim at the centre (which fixes
+        // nothing) a Dirichlet one on another link can lie at the centre too.
+        const double w = 1.0 / std::max<double>(claims[k].distance, kMinAnchorDistance);
         const std::array<double, 4> v = value(claims[k]);
         weight += w;
         for (int c = 0; c < 4; ++c) sum[c] += w * v[c];

@@ -237,6 +237,28 @@ TEST_CASE("Neumann sides constrain nothing but still cut", "[rasterize]") {
   for (size_t i = 0; i < p.pixel_count(); ++i) CHECK(!(outside[i] && constrained(p, i)));
 }
 
+TEST_CASE("a Dirichlet claim at a pixel centre behind a Neumann one there stays finite",
+          "[rasterize]") {
+  // Two curves through the centre of pixel (10, 10): an insulating one (Neumann on both sides,
+  // first in drawing order, so it wins the ties) along the row, a coloured one along the column.
+  // The Neumann claims fix nothing, so the pixel is anchored by the coloured curve's claims at
+  // distance 0 (ladybug at 1024x1024 met this and its problem held NaN).
+  DiffusionCurve insulating;
+  insulating.points = {{0, 10.5}, {7, 10.5}, {14, 10.5}, {21, 10.5}};
+  insulating.left = insulating.right = {{0, Color(0, 0, 0)}};
+  insulating.left_boundary = insulating.right_boundary = Boundary::Neumann;
+  DiffusionCurve coloured;
+  coloured.points = {{10.5, 0}, {10.5, 7}, {10.5, 14}, {10.5, 21}};
+  coloured.left = coloured.right = {{0, Color(1, 0.5, 0.25)}};
+  // Second order (the first-order rule leaves a pixel whose nearest claim is Neumann free).
+  const Problem p = rasterize({insulating, coloured}, 21, 21);
+  for (float v : p.value) REQUIRE(std::isfinite(v));
+  const size_t centre = p.index(10, 10);
+  CHECK(constrained(p, centre));
+  CHECK(p.value[centre] == Approx(1));  // planes of W*H per channel
+  CHECK(p.value[2 * p.pixel_count() + centre] == Approx(0.25));
+}
+
 TEST_CASE("an opaque Neumann side hides the Dirichlet colour behind it on the same link",
           "[rasterize]") {
   // A lens 0.15-0.3 pixels thick between two rows of pixel centres, black inside, Neumann
