@@ -9,6 +9,7 @@
 
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
+#include "image_checks.hpp"
 #include "run_command.hpp"
 #include "scene_fixture.hpp"
 #include "vector/polygon.hpp"
@@ -16,6 +17,7 @@
 namespace render = wisp::render;
 namespace vector = wisp::vector;
 using Eigen::Vector2d;
+using wisp::test::distance_to_rings;
 
 namespace {
 
@@ -28,17 +30,6 @@ const render::SceneFrames& frames() {
 
 std::vector<int> five_angles() {
   return wisp::test::five_angles(frames().anim);
-}
-
-double distance_to_rings(const std::vector<std::vector<Vector2d>>& rings, const Vector2d& p) {
-  double best = INFINITY;
-  for (const auto& r : rings)
-    for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-      const Vector2d a = r[j], d = r[i] - r[j];
-      const double f = std::clamp((p - a).dot(d) / std::max(1e-12, d.squaredNorm()), 0.0, 1.0);
-      best = std::min(best, (a + f * d - p).norm());
-    }
-  return best;
 }
 
 struct Check {

@@ -15,6 +15,7 @@
 
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
+#include "image_checks.hpp"
 #include "run_command.hpp"
 #include "scene_fixture.hpp"
 #include "vector/hatching.hpp"
@@ -26,6 +27,7 @@
 namespace render = wisp::render;
 namespace vector = wisp::vector;
 using Eigen::Vector2d;
+using wisp::test::distance_to_rings;
 using wisp::test::fresh_folder;
 using wisp::test::run_command;
 
@@ -83,17 +85,6 @@ double distance_to_faces(const vector::ArrangementView& view, int w, const Vecto
     ring(f.outer);
     for (const auto& h : f.holes) ring(h);
   }
-  return best;
-}
-
-double distance_to_rings(const std::vector<std::vector<Vector2d>>& rings, const Vector2d& p) {
-  double best = INFINITY;
-  for (const auto& r : rings)
-    for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-      const Vector2d a = r[j], d = r[i] - r[j];
-      const double f = std::clamp((p - a).dot(d) / std::max(1e-12, d.squaredNorm()), 0.0, 1.0);
-      best = std::min(best, (a + f * d - p).norm());
-    }
   return best;
 }
 
@@ -272,10 +263,7 @@ TEST_CASE("wisp render draws hatching alike in the PNG and the SVG", "[hatching]
   // by one, compositing their round caps twice where they meet (a 0.7 px stroke's pixels are
   // mostly partly covered, so a darker threshold would count mostly that difference).
   const cv::Mat a = png < 128, b = from_svg < 128;
-  cv::Mat both, either;
-  cv::bitwise_and(a, b, both);
-  cv::bitwise_or(a, b, either);
-  const double iou = double(cv::countNonZero(both)) / std::max(1, cv::countNonZero(either));
+  const double iou = wisp::test::mask_iou(a, b);
   INFO("dark pixels: PNG " << cv::countNonZero(a) << ", SVG " << cv::countNonZero(b) << ", IoU "
                            << iou);
   CHECK(cv::countNonZero(a) > 1000);

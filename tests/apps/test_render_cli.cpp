@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image_checks.hpp"
 #include "io/anim_file.hpp"
 #include "io/scene.hpp"
 #include "io/video_file.hpp"
@@ -47,14 +48,6 @@ std::string render(const std::string& dir, const std::string& extra = "") {
   return dir;
 }
 
-double iou(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat both, either;
-  cv::bitwise_and(a, b, both);
-  cv::bitwise_or(a, b, either);
-  const double u = cv::countNonZero(either);
-  return u > 0 ? cv::countNonZero(both) / u : 1.0;
-}
-
 }  // namespace
 
 TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "[cli][render]") {
@@ -90,7 +83,7 @@ TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "
     REQUIRE(svg_rgba.channels() == 4);
     cv::Mat svg_alpha;
     cv::extractChannel(svg_rgba, svg_alpha, 3);
-    CHECK(iou(svg_alpha > 127, mask > 127) >= 0.98);
+    CHECK(wisp::test::mask_iou(svg_alpha > 127, mask > 127) >= 0.98);
 
     // Hair lies inside the hull of the projected strands (grown by the widest wisp).
     const wisp::sim::ProjectedFrame pf = projector.project(anim.frames[k]);

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image_checks.hpp"
 #include "run_command.hpp"
 
 using nlohmann::json;
@@ -210,10 +211,7 @@ TEST_CASE("ink strokes lie on the silhouette of the hair mask", "[cli][style]") 
         run_command("rsvg-convert " + dir + "/frame_0000.svg -o " + dir + "/svg.png").exit_code ==
         0);
     const cv::Mat svg_ink = green_pixels(cv::imread(dir + "/svg.png", cv::IMREAD_COLOR));
-    cv::Mat both, either;
-    cv::bitwise_and(ink, svg_ink, both);
-    cv::bitwise_or(ink, svg_ink, either);
-    const double iou = double(cv::countNonZero(both)) / cv::countNonZero(either);
+    const double iou = wisp::test::mask_iou(ink, svg_ink);
     INFO("ink IoU PNG vs SVG " << iou);
     // Not 1: the PNG fills each colour's strokes as one exact union (every edge pixel's coverage
     // computed once), while viewers stroke the SVG's constant-width pieces one by one, so their

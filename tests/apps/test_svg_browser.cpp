@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "apps/render/picture.hpp"
+#include "image_checks.hpp"
 #include "run_command.hpp"
 
 using nlohmann::json;
@@ -157,14 +158,6 @@ cv::Mat rsvg(const std::string& svg, bool hair_only, const std::string& dir) {
   return rsvg_text(inline_svg(read_file(svg), hair_only), dir);
 }
 
-double iou(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat both, either;
-  cv::bitwise_and(a, b, both);
-  cv::bitwise_or(a, b, either);
-  const double u = cv::countNonZero(either);
-  return u > 0 ? cv::countNonZero(both) / u : 1.0;
-}
-
 // How a viewer's picture of frame k (the whole picture and the hair layers alone, BGRA) agrees
 // with the PNG frame: the hair region's IoU with the frame's mask, and the mean colour difference
 // (0-255, over the channels) where the mask is full.
@@ -179,7 +172,7 @@ Agreement agreement(const cv::Mat& whole, const cv::Mat& hair, const std::string
   cv::cvtColor(whole, bgr, cv::COLOR_BGRA2BGR);
   cv::absdiff(bgr, png, d);
   const cv::Scalar m = cv::mean(d, mask == 255);
-  return {iou(alpha > 127, mask > 127), (m[0] + m[1] + m[2]) / 3};
+  return {wisp::test::mask_iou(alpha > 127, mask > 127), (m[0] + m[1] + m[2]) / 3};
 }
 
 // The colour bound inside the hair: the embedded style shows the PNG's own shading; the flat
