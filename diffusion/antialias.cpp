@@ -196,15 +196,24 @@ bool facing_colour(const std::vector<DiffusionCurve>& curves, const NearestPoint
   return true;
 }
 
+// The region's ring edges as segments (curve -1), for binning like the curves.
+std::vector<Segment> ring_segments(const std::vector<std::vector<Vector2d>>& rings) {
+  std::vector<Segment> out;
+  for (const auto& ring : rings)
+    for (size_t k = 0; k < ring.size(); ++k)
+      out.push_back({ring[k], ring[(k + 1) % ring.size()], -1, 0, 0});
+  return out;
+}
+
 }  // namespace
 
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
-                         std::vector<float>& planes, const std::vector<std::uint8_t>* region,
+                         std::vector<float>& planes, const AntialiasRegion* region,
                          const AntialiasOptions& options) {
   const size_t n_pixels = size_t(width) * size_t(height);
   if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
     throw std::invalid_argument("antialias: image planes do not match the size");
-  if (region && region->size() != n_pixels)
+  if (region && region->centres.size() != n_pixels)
     throw std::invalid_argument("antialias: region does not match the image size");
   if (options.samples < 1 || options.samples > 16)
     throw std::invalid_argument("antialias: samples must be 1 to 16");
@@ -214,6 +223,16 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   stats.segments = long(segments.size());
   if (segments.empty()) return stats;
   const SegmentBins bins = bin_segments(segments, width, height);
+  const std::vector<Segment> edges = region ? ring_segments(region->rings) : std::vector<Segment>();
+  const SegmentBins edge_bins = bin_segments(edges, width, height);
+  // Whether sub-sample q of pixel p lies in the region: its centre's side, flipped by every ring
+  // edge between q and the centre (both in p, so only the edges binned in p can cross).
+  const auto inside = [&](const Vector2d& q, size_t p, const Vector2d& centre) {
+    bool in = region->centres[p] != 0;
+    for (int k = edge_bins.first[p]; k < edge_bins.first[p + 1]; ++k)
+      in ^= meet(q, centre, edges[edge_bins.index[k]].a, edges[edge_bins.index[k]].b);
+    return in;
+  };
   const int n = options.samples;
   const auto orders = neighbour_orders(n);
   const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
@@ -254,6 +273,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         int count = 0;
         for (int s = 0; s < n * n; ++s) {
           const Vector2d q(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
+          if (region && !inside(q, p, Vector2d(x + 0.5, y + 0.5))) continue;  // not shown
           bool reached = false;
           for (const auto& [dx, dy] : orders[s]) {
             const int cx = x + dx, cy = y + dy;
@@ -262,15 +282,16 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             const bool blocked = std::any_of(local.begin(), local.end(), [&](int k) {
               return meet(q, centre, segments[k].a, segments[k].b);
             });
-            if (blocked) continue;
-            reached = true;
             const size_t c = size_t(cy) * width + cx;
-            if (region && !(*region)[c]) break;  // outside the shown area: does not count
+            // A centre outside the shown area holds no colour of it (the region's edge is not
+            // always a curve: the head hides hair along its own outline).
+            if (blocked || (region && !region->centres[c])) continue;
+            reached = true;
             sum += sample_colour(q, centre, c);
             ++count;
             break;
           }
-          if (reached || (region && !(*region)[p])) continue;
+          if (reached) continue;
           // A sliver with no pixel centre: the side of the nearest curve that faces q.
           const NearestPoint at = nearest_point(q, local, segments);
           Color colour;

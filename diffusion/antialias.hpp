@@ -29,14 +29,20 @@ struct AntialiasStats {
   long segments = 0;  // active polyline segments after flattening
 };
 
+// The area the image will be shown in, when a mask clips it later with its own anti-aliased
+// coverage: closed rings (even-odd, pixel coordinates) and, per pixel, whether its centre lies
+// inside them. Only sub-samples inside count, so a pixel on the region's edge takes the colour of
+// its inside alone (a strand thinner than a pixel its own colour, not the solve's value at a centre
+// outside it) and the clip supplies the coverage.
+struct AntialiasRegion {
+  std::vector<std::vector<Eigen::Vector2d>> rings;
+  std::vector<std::uint8_t> centres;  // width x height, 1 inside
+};
+
 // `planes`: the solved RGB image, three planes of width x height floats, changed in place.
-// `region`: optional, width x height, 0 for pixels outside the area the image will be shown in
-// (a mask that clips it later, with its own anti-aliased coverage): sub-samples that reach such a
-// pixel do not count, so a pixel on the region's edge takes the colour of its inside alone and
-// the clip supplies the coverage. Curves are in pixel coordinates and must be valid.
+// `region`: optional (see AntialiasRegion). Curves are in pixel coordinates and must be valid.
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
-                         std::vector<float>& planes,
-                         const std::vector<std::uint8_t>* region = nullptr,
+                         std::vector<float>& planes, const AntialiasRegion* region = nullptr,
                          const AntialiasOptions& options = {});
 
 }  // namespace wisp::diffusion

@@ -64,13 +64,13 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 // outside the hair mask do not count, since the mask clips the hair image with its own coverage.
 diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionCurve>& curves,
                                          const vector::HairMask& mask, diffusion::Image& hair) {
-  std::vector<std::uint8_t> region(size_t(hair.width) * hair.height, 0);
-  std::vector<std::vector<Eigen::Vector2d>> rings;
+  diffusion::AntialiasRegion region;
+  region.centres.assign(size_t(hair.width) * hair.height, 0);
   for (const vector::MaskPolygon& m : mask.polygons) {
-    rings.push_back(m.outer);
-    rings.insert(rings.end(), m.holes.begin(), m.holes.end());
+    region.rings.push_back(m.outer);
+    region.rings.insert(region.rings.end(), m.holes.begin(), m.holes.end());
   }
-  vector::fill_centres(region, hair.width, hair.height, rings, std::uint8_t(1));
+  vector::fill_centres(region.centres, hair.width, hair.height, region.rings, std::uint8_t(1));
   return diffusion::antialias(curves, hair.width, hair.height, hair.planes, &region);
 }
 

@@ -84,15 +84,37 @@ TEST_CASE("colour does not leak across a curve into a thin feature", "[antialias
   }
 }
 
-TEST_CASE("sub-samples that reach pixels outside the region do not count", "[antialias]") {
+TEST_CASE("sub-samples outside the region do not count", "[antialias]") {
   const Drawing d = drawing(32, {line({10.25, -1}, {10.25, 33}, kWhite, kBlack)});
   Image im = render_drawing(d, 32, 32, {}, nullptr, false);
-  std::vector<std::uint8_t> region(32 * 32, 1);
+  AntialiasRegion region;  // the black side alone is shown: x >= 10.25
+  region.rings = {{{10.25, -1}, {33, -1}, {33, 33}, {10.25, 33}}};
+  region.centres.assign(32 * 32, 1);
   for (int y = 0; y < 32; ++y)
-    for (int x = 0; x <= 9; ++x) region[y * 32 + x] = 0;  // the white side is not shown
+    for (int x = 0; x <= 9; ++x) region.centres[y * 32 + x] = 0;
   const AntialiasStats st = antialias(d.curves, 32, 32, im.planes, &region);
   CHECK(st.pixels == 32);
   for (int y = 0; y < 32; ++y) CHECK(red(im, 10, y) == Approx(0).margin(1e-4));  // black alone
+}
+
+TEST_CASE("a region thinner than a pixel shows its own colour, not the solve's outside it",
+          "[antialias]") {
+  // A white strand 0.6 px wide (black outside its outline) holds no pixel centre. Shown through
+  // a mask of the strand alone, its pixels must carry the strand's colour: the mask supplies the
+  // coverage. The solved values at their centres are the outside's black.
+  const Drawing d = drawing(
+      16, {line({7.6, -1}, {7.6, 17}, kBlack, kWhite), line({8.2, -1}, {8.2, 17}, kWhite, kBlack)});
+  Image im = render_drawing(d, 16, 16, {}, nullptr, false);
+  REQUIRE(red(im, 7, 8) < 0.5);
+  REQUIRE(red(im, 8, 8) < 0.5);
+  AntialiasRegion region;
+  region.rings = {{{7.6, -1}, {8.2, -1}, {8.2, 17}, {7.6, 17}}};
+  region.centres.assign(16 * 16, 0);
+  antialias(d.curves, 16, 16, im.planes, &region);
+  for (int y = 0; y < 16; ++y) {
+    CHECK(red(im, 7, y) == Approx(1).margin(1e-4));
+    CHECK(red(im, 8, y) == Approx(1).margin(1e-4));
+  }
 }
 
 TEST_CASE("hidden parts of a curve do not anti-alias", "[antialias]") {
@@ -113,7 +135,8 @@ TEST_CASE("hidden parts of a curve do not anti-alias", "[antialias]") {
 TEST_CASE("antialias refuses mismatched sizes", "[antialias]") {
   std::vector<float> planes(3 * 4 * 4, 0.0f);
   CHECK_THROWS_AS(antialias({}, 5, 4, planes), std::invalid_argument);
-  const std::vector<std::uint8_t> region(3, 1);
+  AntialiasRegion region;
+  region.centres.assign(3, 1);
   CHECK_THROWS_AS(antialias({}, 4, 4, planes, &region), std::invalid_argument);
   AntialiasOptions o;
   o.samples = 0;
