@@ -477,6 +477,8 @@ const std::vector<std::pair<const char*, StyleField>>& style_fields() {
          }
          s.geometry.curvature_clamp = f.number(*v, f.name(k));
        }},
+      {"flatten_tolerance",
+       [](Fields& f, const char* k, HairStyle& s) { f.get(k, s.geometry.flatten_tolerance_px); }},
       {"hair_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.hair); }},
       {"shadow_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.shadow); }},
       {"highlight_color", [](Fields& f, const char* k, HairStyle& s) { f.color(k, s.highlight); }},

@@ -124,6 +124,8 @@ void validate(const HairStyle& s) {
           "must be in [0, 1] (a fraction of the strand; 0: no taper)");
   require(s.geometry.curvature_clamp > 0, "curvature_clamp",
           "must be > 0 (null disables the clamp)");
+  require(s.geometry.flatten_tolerance_px >= 0.005 && s.geometry.flatten_tolerance_px <= 2,
+          "flatten_tolerance", "must be in [0.005, 2] pixels");
   require(s.highlight_along >= 0 && s.highlight_along <= 1, "highlight_along", "must be in [0, 1]");
   require(s.highlight_spread > 0 && s.highlight_spread <= 1, "highlight_spread",
           "must be in (0, 1]");

@@ -40,9 +40,9 @@ struct WispStyle {
   // on that side (at the point itself: the radius of curvature); < 1 leaves margin for the
   // fitting and flattening tolerances. Infinity disables the clamp (Faraj's behaviour).
   double curvature_clamp = 0.8;
-  double fit_tolerance_px = 0.05;     // outline cubic versus the exact offset curve
-  double flatten_tolerance_px = 0.1;  // band polygon versus the outline cubics
-  int max_pieces_per_cubic = 256;     // guard against absurd geometry
+  double fit_tolerance_px = 0.05;      // outline cubic versus the exact offset curve
+  double flatten_tolerance_px = 0.05;  // band polygon versus the outline cubics
+  int max_pieces_per_cubic = 256;      // guard against absurd geometry
   // Build each wisp from the longest run of samples marked visible (head occlusion); a strand
   // with no visible pair of samples gives no wisp. When false every sample is used.
   bool trim_hidden = true;

@@ -249,7 +249,7 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
   CHECK(d.render.antialias);
 
   const json doc = json::parse(R"({
-    "style": {"width": 0.02, "profile": "sine", "curvature_clamp": 0.5,
+    "style": {"width": 0.02, "profile": "sine", "curvature_clamp": 0.5, "flatten_tolerance": 0.2,
               "hair_color": [0.9, 0.8, 0.1], "shadow_color": [0, 0, 0],
               "highlight_color": [1, 1, 1], "highlight_along": 0.6, "highlight_spread": 0.1,
               "highlight_side": "right"},
@@ -262,6 +262,9 @@ TEST_CASE("style, light and render parts fill the look of a scene", "[io][scene]
   CHECK(s.style.geometry.width == 0.02);
   CHECK(s.style.geometry.profile.shape == wisp::vector::WidthProfile::Shape::Shin);
   CHECK(s.style.geometry.curvature_clamp == 0.5);
+  CHECK(s.style.geometry.flatten_tolerance_px == 0.2);
+  CHECK(error_of({{"style", {{"flatten_tolerance", 0}}}}) ==
+        "scene.json: style.flatten_tolerance: must be in [0.005, 2] pixels");
   CHECK(s.style.hair == Eigen::Vector3f(0.9f, 0.8f, 0.1f));
   CHECK(s.style.shadow == Eigen::Vector3f::Zero());
   CHECK(s.style.highlight == Eigen::Vector3f::Ones());
