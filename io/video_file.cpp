@@ -34,8 +34,8 @@ const VideoModule& video_module(const std::filesystem::path& video) {
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       const char* why = dlerror();
-      m.error = "cannot load the video module " + path.string() + " (" +
-                (why ? why : "unknown error") + "); build or install wisp whole";
+      m.error = std::string("cannot load the video module (") + (why ? why : path.c_str()) +
+                "); build or install wisp whole";
       return m;
     }
     m.open = reinterpret_cast<decltype(m.open)>(dlsym(handle, "wisp_video_open"));
@@ -47,7 +47,7 @@ const VideoModule& video_module(const std::filesystem::path& video) {
       m.error = "the video module " + path.string() + " lacks a function (from another build?)";
     return m;
   }();
-  if (!loaded.error.empty()) throw std::runtime_error(video.string() + ": " + loaded.error);
+  if (!loaded.error.empty()) throw VideoModuleError(video.string() + ": " + loaded.error);
   return loaded;
 }
 
