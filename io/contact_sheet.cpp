@@ -1,14 +1,16 @@
-// write_contact_sheet: see contact_sheet.hpp.
+// write_contact_sheet: see contact_sheet.hpp. Frames are read and the sheet written with libpng
+// (io/png_decode, io/png_encode); OpenCV only scales and draws, in RGB order.
 #include "io/contact_sheet.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
-#include "io/atomic_file.hpp"
+#include "io/drawing_xml.hpp"
+#include "io/png_decode.hpp"
+#include "io/png_encode.hpp"
 
 namespace wisp::io {
 
@@ -46,19 +48,20 @@ ContactSheetLayout write_contact_sheet(const std::filesystem::path& path,
   cv::Mat sheet;
   cv::Size frame_size;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    std::error_code ec;  // imread of a missing file would log a warning first
-    const cv::Mat image = std::filesystem::is_regular_file(frames[i], ec)
-                              ? cv::imread(frames[i].string(), cv::IMREAD_COLOR)
-                              : cv::Mat();
-    if (image.empty())
+    RgbImage pixels;
+    try {
+      pixels = read_png(frames[i], "frame", kMaxImageSide);
+    } catch (const std::runtime_error&) {
       throw std::runtime_error(file + ": cannot read the frame " + frames[i].string());
+    }
+    const cv::Mat image(pixels.height, pixels.width, CV_8UC3, pixels.pixels.data());
     if (i == 0) {
       frame_size = image.size();
       l = contact_sheet_layout(static_cast<int>(frames.size()), image.cols, image.rows, o);
       const auto channel = [](float v) { return std::lround(v * 255.0f); };
       sheet = cv::Mat(l.height, l.width, CV_8UC3,
-                      cv::Scalar(channel(o.background.z()), channel(o.background.y()),
-                                 channel(o.background.x())));
+                      cv::Scalar(channel(o.background.x()), channel(o.background.y()),
+                                 channel(o.background.z())));
     } else if (image.size() != frame_size) {
       throw std::runtime_error(file + ": the frame " + frames[i].string() +
                                " differs in size from the first frame");
@@ -86,10 +89,7 @@ ContactSheetLayout write_contact_sheet(const std::filesystem::path& path,
                   cv::LINE_AA);
     }
   }
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    if (!cv::imwrite(tmp.string(), sheet))
-      throw std::runtime_error(file + ": cannot write the PNG file");
-  });
+  write_png_fast(path, {sheet.data, sheet.cols, sheet.rows, 3, sheet.step[0]});
   return l;
 }
 

@@ -33,7 +33,7 @@ struct ContactSheetLayout {
 ContactSheetLayout contact_sheet_layout(int count, int frame_width, int frame_height,
                                         const ContactSheetOptions& options);
 
-// Reads `frames` (all the same size; any format OpenCV reads) and writes the sheet to `path`
+// Reads `frames` (PNG files, all the same size) and writes the sheet to `path`
 // (.png). `numbers[i]` labels frames[i]; empty numbers label them 0, 1, 2... Returns the layout.
 // Throws std::runtime_error naming the file: no frames, an unreadable frame or one of another
 // size, numbers of the wrong length, bad options.

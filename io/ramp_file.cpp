@@ -1,15 +1,15 @@
 // Reading toon ramps (see ramp_file.hpp). The PNG's chunk structure, checksums and size are
 // checked here before the decoder sees it: libpng reports a truncated or corrupt file on stderr
-// before failing, and OpenCV fails a huge one with its assertion text; neither names the field.
+// before failing, and a decoder fails a huge one with its own text; neither names the field.
 #include "io/ramp_file.hpp"
 
 #include <cstdint>
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "io/input_file.hpp"
+#include "io/png_decode.hpp"
 
 namespace wisp::io {
 namespace {
@@ -67,25 +67,21 @@ void check_png(const std::string& b, const std::string& name) {
 std::shared_ptr<const vector::ToonRamp> read_ramp(const std::filesystem::path& path) {
   const std::string bytes = read_input_file(path, "ramp image");
   check_png(bytes, path.string());
-  const std::vector<std::uint8_t> data(bytes.begin(), bytes.end());
-  cv::Mat img;
+  RgbImage img;
   try {
-    img = cv::imdecode(data, cv::IMREAD_COLOR);
-  } catch (const cv::Exception&) {
-    img.release();
-  }
-  if (img.empty() || img.cols <= 0 || img.rows <= 0)
+    img =
+        decode_png(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), kMaxRampSide);
+  } catch (const std::runtime_error&) {
     throw std::runtime_error(path.string() + ": cannot decode the PNG image");
+  }
   auto ramp = std::make_shared<vector::ToonRamp>();
-  ramp->width = img.cols;
-  ramp->height = img.rows;
+  ramp->width = img.width;
+  ramp->height = img.height;
   ramp->source = path.string();
-  ramp->pixels.reserve(size_t(img.cols) * img.rows);
-  for (int y = 0; y < img.rows; ++y)
-    for (int x = 0; x < img.cols; ++x) {
-      const cv::Vec3b& bgr = img.at<cv::Vec3b>(y, x);
-      ramp->pixels.emplace_back(bgr[2] / 255.0f, bgr[1] / 255.0f, bgr[0] / 255.0f);
-    }
+  ramp->pixels.reserve(size_t(img.width) * img.height);
+  for (size_t i = 0; i < img.pixels.size(); i += 3)
+    ramp->pixels.emplace_back(img.pixels[i] / 255.0f, img.pixels[i + 1] / 255.0f,
+                              img.pixels[i + 2] / 255.0f);
   return ramp;
 }
 

@@ -1,51 +1,81 @@
-// write_video and count_video_frames: see video_file.hpp.
+// write_video, check_video and count_video_frames (see video_file.hpp): the frames are read here
+// (io/png_decode) and handed to the video module (io/video_module.hpp), loaded on first use.
 #include "io/video_file.hpp"
 
+#include <dlfcn.h>
 #include <unistd.h>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
+#include <cstdint>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/drawing_xml.hpp"
+#include "io/install_layout.hpp"
+#include "io/png_decode.hpp"
+#include "io/video_module.hpp"
 
 namespace wisp::io {
 namespace {
 
-// imread of a missing file logs a warning before failing: check first, fail quietly.
-cv::Mat read_image(const std::filesystem::path& frame) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(frame, ec)) return {};
-  return cv::imread(frame.string(), cv::IMREAD_COLOR);
+struct VideoModule {
+  decltype(&wisp_video_open) open = nullptr;
+  decltype(&wisp_video_write) write = nullptr;
+  decltype(&wisp_video_close) close = nullptr;
+  decltype(&wisp_video_count_frames) count_frames = nullptr;
+  std::string error;  // why it could not be loaded; empty when it was
+};
+
+// Loaded once per process and never unloaded (OpenCV's FFmpeg back end keeps threads and
+// registrations that outlive a dlclose). Throws "<video>: ..." when the module is missing.
+const VideoModule& video_module(const std::filesystem::path& video) {
+  static const VideoModule loaded = [] {
+    VideoModule m;
+    const std::filesystem::path path = module_path("wisp-video.so");
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      m.error = std::string("cannot load the video module (") + (why ? why : path.c_str()) +
+                "); build or install wisp whole";
+      return m;
+    }
+    m.open = reinterpret_cast<decltype(m.open)>(dlsym(handle, "wisp_video_open"));
+    m.write = reinterpret_cast<decltype(m.write)>(dlsym(handle, "wisp_video_write"));
+    m.close = reinterpret_cast<decltype(m.close)>(dlsym(handle, "wisp_video_close"));
+    m.count_frames =
+        reinterpret_cast<decltype(m.count_frames)>(dlsym(handle, "wisp_video_count_frames"));
+    if (!m.open || !m.write || !m.close || !m.count_frames)
+      m.error = "the video module " + path.string() + " lacks a function (from another build?)";
+    return m;
+  }();
+  if (!loaded.error.empty()) throw VideoModuleError(video.string() + ": " + loaded.error);
+  return loaded;
 }
 
-cv::Mat read_frame(const std::filesystem::path& video, const std::filesystem::path& frame,
-                   const cv::Size& size) {
-  cv::Mat image = read_image(frame);
-  if (image.empty())
+// The frame's pixels, or an error naming the video and the frame.
+RgbImage read_frame(const std::filesystem::path& video, const std::filesystem::path& frame) {
+  try {
+    return read_png(frame, "frame", kMaxImageSide);
+  } catch (const std::runtime_error&) {
     throw std::runtime_error(video.string() + ": cannot read the frame " + frame.string());
-  if (image.size() != size)
-    throw std::runtime_error(video.string() + ": the frame " + frame.string() + " is " +
-                             std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                             ", the first frame " + std::to_string(size.width) + "x" +
-                             std::to_string(size.height));
-  return image;
+  }
 }
 
-// Encodes every frame into `tmp` with `fourcc`; true if the result decodes to every frame.
-bool encode(const std::filesystem::path& video, const std::filesystem::path& tmp,
-            const std::vector<std::filesystem::path>& frames, double fps, const char* fourcc,
-            const cv::Size& size) {
-  {
-    cv::VideoWriter writer;
-    if (!writer.open(tmp.string(), cv::CAP_FFMPEG,
-                     cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]), fps, size,
-                     true))
-      return false;
-    for (const auto& f : frames) writer.write(read_frame(video, f, size));
-    writer.release();
+// Encodes `count` frames, each produced by frame(i), into `tmp` with `fourcc`; true if the result
+// decodes to every frame.
+template <typename Frame>
+bool encode(const VideoModule& m, const std::filesystem::path& tmp, int count, double fps,
+            const char* fourcc, int width, int height, const Frame& frame) {
+  void* writer = m.open(tmp.c_str(), fourcc, fps, width, height);
+  if (!writer) return false;
+  bool written = true;
+  try {
+    for (int i = 0; i < count && written; ++i) written = m.write(writer, frame(i)) != 0;
+  } catch (...) {
+    m.close(writer);
+    throw;
   }
-  return count_video_frames(tmp) == static_cast<int>(frames.size());
+  m.close(writer);
+  return written && m.count_frames(tmp.c_str()) == count;
 }
 
 }  // namespace
@@ -57,14 +87,23 @@ std::string write_video(const std::filesystem::path& path,
   if (frames.empty()) throw std::runtime_error(path.string() + ": no frames to write");
   if (!(fps > 0 && fps <= 1000))
     throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
-  const cv::Mat first = read_image(frames.front());
-  if (first.empty())
-    throw std::runtime_error(path.string() + ": cannot read the frame " + frames.front().string());
-  const cv::Size size = first.size();
+  const RgbImage first = read_frame(path, frames.front());
+  const VideoModule& m = video_module(path);
+  RgbImage current;
+  const auto frame = [&](int i) -> const unsigned char* {
+    if (i == 0) return first.pixels.data();
+    current = read_frame(path, frames[i]);
+    if (current.width != first.width || current.height != first.height)
+      throw std::runtime_error(path.string() + ": the frame " + frames[i].string() + " is " +
+                               std::to_string(current.width) + "x" +
+                               std::to_string(current.height) + ", the first frame " +
+                               std::to_string(first.width) + "x" + std::to_string(first.height));
+    return current.pixels.data();
+  };
   std::string used;
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     for (const char* fourcc : {"avc1", "mp4v"})
-      if (encode(path, tmp, frames, fps, fourcc, size)) {
+      if (encode(m, tmp, int(frames.size()), fps, fourcc, first.width, first.height, frame)) {
         used = fourcc;
         return;
       }
@@ -77,20 +116,14 @@ std::string write_video(const std::filesystem::path& path,
 void check_video(const std::filesystem::path& path, int width, int height, double fps) {
   if (!(fps > 0 && fps <= 1000))
     throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
+  const VideoModule& m = video_module(path);
   namespace fs = std::filesystem;
   const fs::path probe =
       fs::temp_directory_path() / ("wisp-video-probe-" + std::to_string(getpid()) + ".mp4");
-  const cv::Mat blank(height, width, CV_8UC3, cv::Scalar::all(0));
-  bool ok = false;
+  const std::vector<std::uint8_t> blank(std::size_t(width) * height * 3, 0);
   for (const char* fourcc : {"avc1", "mp4v"}) {
-    {
-      cv::VideoWriter writer;
-      if (writer.open(probe.string(), cv::CAP_FFMPEG,
-                      cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]), fps,
-                      blank.size(), true))
-        writer.write(blank);
-    }
-    ok = count_video_frames(probe) == 1;
+    const bool ok =
+        encode(m, probe, 1, fps, fourcc, width, height, [&](int) { return blank.data(); });
     std::error_code ec;
     fs::remove(probe, ec);
     if (ok) return;
@@ -102,12 +135,7 @@ void check_video(const std::filesystem::path& path, int width, int height, doubl
 }
 
 int count_video_frames(const std::filesystem::path& path) {
-  cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
-  if (!capture.isOpened()) return -1;
-  int count = 0;
-  cv::Mat frame;
-  while (capture.read(frame)) ++count;
-  return count;
+  return video_module(path).count_frames(path.c_str());
 }
 
 }  // namespace wisp::io

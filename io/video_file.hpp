@@ -1,17 +1,25 @@
 // The MP4 preview: PNG frames, in order, through OpenCV's VideoWriter (Debian's OpenCV encodes
-// through ffmpeg). H.264 (fourcc "avc1", libx264) is tried first, MPEG-4 part 2 ("mp4v") if that
-// fails; a codec counts as working only when the finished file decodes back to every frame. The
-// file is written atomically (io/atomic_file.hpp): the temporary keeps the .mp4 extension, from
-// which OpenCV picks the container. Same frames, same bytes (x264 is deterministic).
+// through ffmpeg), which lives in the video module loaded on first use (io/video_module.hpp). H.264
+// (fourcc "avc1", libx264) is tried first, MPEG-4 part 2 ("mp4v") if that fails; a codec counts as
+// working only when the finished file decodes back to every frame. The file is written atomically
+// (io/atomic_file.hpp): the temporary keeps the .mp4 extension, from which OpenCV picks the
+// container. Same frames, same bytes (x264 is deterministic).
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace wisp::io {
 
-// Writes `frames` (image files OpenCV reads, all of the same size) at `fps` frames per second.
+// Thrown by every function below when the video module (io/video_module.hpp) cannot be loaded: an
+// incomplete build or installation, not a fault of the input. The message names the module.
+struct VideoModuleError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Writes `frames` (PNG files, all of the same size) at `fps` frames per second.
 // Returns the fourcc that worked ("avc1" or "mp4v"). Throws std::runtime_error naming the file:
 // no frames, a frame that cannot be read or differs in size, a path not ending in .mp4, fps not
 // in (0, 1000], or no codec that writes a decodable file.

@@ -108,10 +108,9 @@ void run_assemble(const AssembleArgs& a) {
 
 }  // namespace
 
-void add_assemble_command(CLI::App& app) {
+void add_command(CLI::App& app, const std::vector<std::string>&) {
   auto args = std::make_shared<AssembleArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "assemble", "Preview video, contact sheet and merged stats.json of frames rendered in parts");
+  CLI::App* cmd = add_subcommand(app, "assemble");
   cmd->add_option("outdir", args->outdir, "The folder holding every frame")->required();
   cmd->add_option("--scene", args->scene, "Scene file (default: the one farm.json names)");
   cmd->add_option("--anim", args->anim, "Saved animation (default: OUTDIR/anim.wsim)");

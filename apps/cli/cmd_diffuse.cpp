@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "apps/cli/commands.hpp"
-#include "apps/render/scene_frames.hpp"
+#include "apps/render/image_size.hpp"
 #include "diffusion/render.hpp"
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
@@ -114,10 +114,9 @@ void run_diffuse(const DiffuseArgs& a) {
 
 }  // namespace
 
-void add_diffuse_command(CLI::App& app) {
+void add_command(CLI::App& app, const std::vector<std::string>&) {
   auto args = std::make_shared<DiffuseArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "diffuse", "Render a diffusion-curve drawing (CurveSetXML or SceneXML) to a PNG image");
+  CLI::App* cmd = add_subcommand(app, "diffuse");
   cmd->add_option("input", args->input, "Drawing (.xml)")->required();
   cmd->add_option("-o,--output", args->output, "Output image (.png)")->required();
   auto* size = cmd->add_option("--size", args->size, "Output size WxH (default: the drawing's)");

@@ -21,10 +21,12 @@
 #include "apps/cli/commands.hpp"
 #include "apps/cli/farm_plan.hpp"
 #include "apps/cli/slurm.hpp"
+#include "apps/render/image_size.hpp"
 #include "apps/render/render_range.hpp"
 #include "apps/render/scene_frames.hpp"
 #include "apps/render/scene_setup.hpp"
 #include "io/atomic_file.hpp"
+#include "io/install_layout.hpp"
 #include "io/scene.hpp"
 #include "sim/simulate.hpp"
 
@@ -192,7 +194,8 @@ void run_submit(const SubmitArgs& a, const std::vector<std::string>& command) {
   r.scene = fs::absolute(a.scene).lexically_normal().string();
   r.outdir = fs::absolute(a.outdir).lexically_normal().string();
   while (r.outdir.size() > 1 && r.outdir.back() == '/') r.outdir.pop_back();
-  r.wisp = fs::read_symlink("/proc/self/exe").string();
+  // The dispatcher beside this wisp-farm: the jobs run `wisp simulate`, `wisp render`...
+  r.wisp = (io::executable_dir() / "wisp").string();
   r.size_given = !a.size.empty();
   if (r.size_given) {
     std::tie(r.width, r.height) = render::parse_size("--size", a.size);
@@ -458,9 +461,8 @@ void run_resubmit(const std::string& outdir, const std::vector<std::string>& com
 
 }  // namespace
 
-void add_farm_command(CLI::App& app, const std::vector<std::string>& command) {
-  CLI::App* farm_cmd =
-      app.add_subcommand("farm", "Render an animation on a Slurm cluster (docs/farm.md)");
+void add_command(CLI::App& app, const std::vector<std::string>& command) {
+  CLI::App* farm_cmd = add_subcommand(app, "farm");
   farm_cmd->require_subcommand(1);
 
   auto a = std::make_shared<SubmitArgs>();

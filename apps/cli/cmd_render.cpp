@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "apps/cli/commands.hpp"
+#include "apps/render/image_size.hpp"
 #include "apps/render/progress.hpp"
 #include "apps/render/render_range.hpp"
 #include "apps/render/render_stats.hpp"
@@ -146,6 +147,8 @@ void run_render(const RenderArgs& a) {
   if (scene.render.video) {
     try {
       io::check_video(out / "preview.mp4", width, height, scene.sim.fps);
+    } catch (const io::VideoModuleError&) {
+      throw;  // not the size's fault
     } catch (const std::exception& e) {
       throw std::invalid_argument(size_field + ": " + e.what());
     }
@@ -191,10 +194,9 @@ void run_render(const RenderArgs& a) {
 
 }  // namespace
 
-void add_render_command(CLI::App& app) {
+void add_command(CLI::App& app, const std::vector<std::string>&) {
   auto args = std::make_shared<RenderArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "render", "Simulate a scene (or read a saved animation) and render its frames");
+  CLI::App* cmd = add_subcommand(app, "render");
   cmd->add_option("scene", args->scene, "Scene file (.json)")->required();
   cmd->add_option("-o,--output", args->outdir, "Output folder")->required();
   cmd->add_option("--frames", args->frames, "Frames A to B-1, as A:B (default: all)");

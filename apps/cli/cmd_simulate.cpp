@@ -15,13 +15,13 @@
 
 namespace wisp::cli {
 
-void add_simulate_command(CLI::App& app) {
+void add_command(CLI::App& app, const std::vector<std::string>&) {
   struct Options {
     std::string scene, output, model;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("simulate", "Simulate a scene's hair and save the animation");
+  CLI::App* cmd = add_subcommand(app, "simulate");
   cmd->add_option("scene", opt->scene, "scene JSON (docs/scene.md)")->required();
   cmd->add_option("-o,--output", opt->output, "animation file to write (.wsim)")->required();
   cmd->add_option("--model", opt->model, "override sim.model")

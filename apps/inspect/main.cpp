@@ -22,6 +22,7 @@
 #include "apps/inspect/layers.hpp"
 #include "apps/inspect/query.hpp"
 #include "apps/inspect/view.hpp"
+#include "apps/render/image_size.hpp"
 #include "apps/render/progress.hpp"
 #include "apps/render/scene_frames.hpp"
 #include "io/atomic_file.hpp"

@@ -8,11 +8,9 @@
 #include <functional>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <stdexcept>
 
 #include "io/anim_file.hpp"
-#include "io/drawing_xml.hpp"
 #include "sim/camera.hpp"
 #include "sim/simulate.hpp"
 #include "sim/solver.hpp"
@@ -181,17 +179,6 @@ vector::HairBase frame_base(const SceneFrames& frames, int k) {
 const sim::ProjectedFrame* motion_neighbour(const SceneFrames& frames, int k) {
   const int other = k > 0 ? k - 1 : k + 1;
   return other < frames.frame_count() ? &frames.projected[other] : nullptr;
-}
-
-std::pair<int, int> parse_size(const std::string& option, const std::string& text) {
-  std::smatch m;
-  if (!std::regex_match(text, m, std::regex(R"((\d{1,6})x(\d{1,6}))")))
-    throw std::invalid_argument(option + ": expected WxH, for example 512x512, got '" + text + "'");
-  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > io::kMaxImageSide || h > io::kMaxImageSide)
-    throw std::invalid_argument(option + " " + text + ": each side must be between 1 and " +
-                                std::to_string(io::kMaxImageSide));
-  return {w, h};
 }
 
 }  // namespace wisp::render

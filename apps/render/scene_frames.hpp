@@ -82,7 +82,4 @@ vector::HairBase frame_base(const SceneFrames& frames, int k);
 // before, or the one after for the first; null when there is no other.
 const sim::ProjectedFrame* motion_neighbour(const SceneFrames& frames, int k);
 
-// "WxH" -> (W, H), each side 1 to io::kMaxImageSide. Throws std::invalid_argument naming `option`.
-std::pair<int, int> parse_size(const std::string& option, const std::string& text);
-
 }  // namespace wisp::render
