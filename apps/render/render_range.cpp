@@ -163,6 +163,8 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
     const int end = block_end(plan, b);
     std::vector<float> warm;
     for (int k = b * plan.block; k < end; ++k) {
+      // Frame k and its motion neighbour (the next one, for frame 0) may still be simulated.
+      frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
       const auto t_frame = Clock::now();
       FrameResult r = render_frame(frames.projected[k], frame_body(frames, k),
                                    frame_occluders(frames, k), frame_base(frames, k), setup,

@@ -80,7 +80,8 @@ struct FrameFiles {
   bool masks = false;  // also write mask_NNNN.png
 };
 
-// Renders the planned frames into files.folder, blocks in parallel (TBB), while a writer thread
+// Renders the planned frames into files.folder, blocks in parallel (TBB), each frame as soon as
+// it is ready (SceneFrames::wait_for: frames may still be simulated), while a writer thread
 // (frame_writer.hpp) draws and writes the finished frames; a failed write ends the run with its
 // error. `written(count)` is called after each frame written, one call at a time (for a progress
 // bar). Each frame's stats
