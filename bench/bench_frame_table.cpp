@@ -119,18 +119,23 @@ int run_frame_table(const std::vector<std::string>&) {
   if (r1024) {
     const json& s = *r1024;
     const double fps = s["frames_per_second"], first = s["first_frame_ms"],
-                 mb = s["peak_memory_mb"];
+                 after_start = s.value("first_frame_after_start_ms", 0.0), mb = s["peak_memory_mb"];
     rows.push_back({"wisp-bench render, default scene, 24 frames, 1024^2",
-                    fmt("%.2f frames/s, first frame %.0f ms, peak %.0f MB", fps, first, mb),
+                    fmt("%.2f frames/s, first frame %.0f ms (written %.0f ms after start), ", fps,
+                        first, after_start) +
+                        fmt("peak %.0f MB", mb),
                     ">= 6 frames/s, first frame <= 300 ms, <= 300 MB",
                     fps >= 6 && first <= 300 && mb <= 300});
     const json& m = s["stage_ms_median"];
     const double arr = m.value("arrangement", 0.0), sweep = m.value("arrangement_sweep", 0.0),
                  solve = m.value("solve", 0.0), write = m.value("write", 0.0),
+                 write_cpu = m.value("write_cpu", 0.0), write_wait = m.value("write_wait", 0.0),
                  wisps = m.value("wisps", 0.0);
     rows.push_back({"per-frame medians at 1024^2",
                     fmt("arrangement %.0f ms (CGAL sweep %.0f), solve %.0f, ", arr, sweep, solve) +
-                        fmt("write %.0f, wisps %.0f", write, wisps),
+                        fmt("write %.0f (CPU %.0f, on the writer thread; frames waited %.1f), ",
+                            write, write_cpu, write_wait) +
+                        fmt("wisps %.0f", wisps),
                     "arrangement <= 100, solve <= 60, write <= 25, wisps <= 15",
                     arr <= 100 && solve <= 60 && write <= 25 && wisps <= 15});
   }

@@ -1,5 +1,6 @@
 // wisp-bench render: the main job on the default scene at 512^2 and 1024^2, as a user runs it
-// (`wisp render`, both cores rendering frames): frames per second, the first frame's latency,
+// (`wisp render`, both cores rendering frames): frames per second, the first frame's latency (its
+// own time, and from the start of the command to its files),
 // per-stage medians from stats.json and the peak memory of the process. The simulation is done
 // once beforehand (`wisp simulate`) and read back with --anim, so only rendering is measured.
 #include <sys/resource.h>
@@ -64,14 +65,18 @@ int run_render(const std::vector<std::string>& args) {
     const fs::path first_dir = dir / ("first" + std::to_string(n));
     double peak = 0;
     run(common + " --frames 0:1 -o " + first_dir.string(), &peak);
-    const double first_ms = read_json(first_dir / "stats.json")["frames"][0]["ms"]["frame"];
+    const nlohmann::json first_stats = read_json(first_dir / "stats.json");
+    const double first_ms = first_stats["frames"][0]["ms"]["frame"];
+    // The same frame from the start of the command (reading the animation, projecting, writing).
+    const double first_after_start_ms = first_stats["ms"].value("first_frame", 0.0);
     const fs::path out = dir / ("frames" + std::to_string(n));
     run(common + " --frames 0:" + std::to_string(frames) + " -o " + out.string(), &peak);
     const nlohmann::json st = read_json(out / "stats.json");
     std::printf(
         "    {\"size\": %d, \"frames_per_second\": %.2f, \"first_frame_ms\": %.1f, "
-        "\"peak_memory_mb\": %.0f, \"stage_ms_median\": %s}%s\n",
-        n, st["frames_per_second"].get<double>(), first_ms, peak,
+        "\"first_frame_after_start_ms\": %.1f, \"peak_memory_mb\": %.0f, "
+        "\"stage_ms_median\": %s}%s\n",
+        n, st["frames_per_second"].get<double>(), first_ms, first_after_start_ms, peak,
         st["stage_ms_median"].dump().c_str(), i + 1 < 2 ? "," : "");
     std::fflush(stdout);
   }

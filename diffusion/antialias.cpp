@@ -213,6 +213,16 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   const size_t n_pixels = size_t(width) * size_t(height);
   if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
     throw std::invalid_argument("antialias: image planes do not match the size");
+  const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
+  return antialias(curves, width, height, source, planes, region, options);
+}
+
+AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
+                         const std::vector<float>& source, std::vector<float>& planes,
+                         const AntialiasRegion* region, const AntialiasOptions& options) {
+  const size_t n_pixels = size_t(width) * size_t(height);
+  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels || source.size() < 3 * n_pixels)
+    throw std::invalid_argument("antialias: image planes do not match the size");
   if (region && region->centres.size() != n_pixels)
     throw std::invalid_argument("antialias: region does not match the image size");
   if (options.samples < 1 || options.samples > 16)
@@ -235,7 +245,6 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   };
   const int n = options.samples;
   const auto orders = neighbour_orders(n);
-  const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
 
   std::vector<long> resampled(size_t(height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

@@ -45,4 +45,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
                          std::vector<float>& planes, const AntialiasRegion* region = nullptr,
                          const AntialiasOptions& options = {});
 
+// The same, reading the solved colours from `source` and writing the re-sampled pixels into
+// `planes`, which holds the same colours on entry: for a caller that keeps the plain solve (the
+// renderer's warm start) beside the anti-aliased image, without a third copy of the image.
+AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
+                         const std::vector<float>& source, std::vector<float>& planes,
+                         const AntialiasRegion* region = nullptr,
+                         const AntialiasOptions& options = {});
+
 }  // namespace wisp::diffusion

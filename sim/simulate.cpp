@@ -106,7 +106,8 @@ double max_stretch(const StrandFrame& frame, const std::vector<Polyline>& rest) 
   return worst;
 }
 
-Animation simulate(const SimSetup& setup, const SimProgress& progress) {
+Animation simulate(const SimSetup& setup, const SimProgress& progress,
+                   const SimFrameSink& on_frame) {
   validate_part(setup.sim, "sim");
   if (!(setup.duration > 0) || !std::isfinite(setup.duration))
     throw std::invalid_argument("motion.duration: must be a positive number of seconds");
@@ -169,6 +170,7 @@ Animation simulate(const SimSetup& setup, const SimProgress& progress) {
     frame.time = step * dt;
     frame.head = env.motion().pose(frame.time);
     if (solver) solver->positions(frame.strands);
+    if (on_frame) on_frame(frame);
     anim.frames.push_back(std::move(frame));
     if (progress) progress(f + 1, frames);
   }

@@ -42,9 +42,14 @@ SimSetup make_setup(const HeadParams& head, const HairParams& hair, const Motion
 // Called after each frame with (frames done, total frames).
 using SimProgress = std::function<void(int done, int total)>;
 
+// Called with each frame as soon as it is simulated, in order (a renderer that starts on the
+// first frames while the rest are simulated); an exception it throws stops the simulation.
+using SimFrameSink = std::function<void(const StrandFrame& frame)>;
+
 // Throws std::invalid_argument for bad parameters (validate(SimParams), as "sim.step_rate: ...")
 // and std::runtime_error when the integrator blows up ("simulation blew up at frame F ...").
-Animation simulate(const SimSetup& setup, const SimProgress& progress = {});
+Animation simulate(const SimSetup& setup, const SimProgress& progress = {},
+                   const SimFrameSink& on_frame = {});
 
 // The number of frames simulate() writes: frame 0 at time 0, then one per 1/fps up to duration.
 int animation_frame_count(const SimSetup& setup);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <regex>
 #include <stdexcept>
@@ -66,10 +67,11 @@ render::FrameRange frame_range(std::pair<int, int> asked, int frame_count) {
   return range;
 }
 
-// The animation (simulated now, or read back) and every frame projected, in order, with a
-// progress bar while simulating.
-render::SceneFrames simulate_and_project(io::Scene scene, const RenderArgs& a,
-                                         std::pair<int, int> size) {
+// The animation (simulated now, or read back) and its frames projected in order on a thread of
+// their own, each ready for rendering as soon as it is made (render::stream_scene_frames). Scenes
+// with fur are simulated whole first, with a progress bar.
+std::unique_ptr<render::SceneFrames> simulate_and_project(io::Scene scene, const RenderArgs& a,
+                                                          std::pair<int, int> size) {
   std::unique_ptr<render::ProgressBar> bar;
   render::SceneFramesOptions load;
   load.anim = a.anim;
@@ -79,21 +81,24 @@ render::SceneFrames simulate_and_project(io::Scene scene, const RenderArgs& a,
     if (!bar) bar = std::make_unique<render::ProgressBar>("simulate", total);
     bar->update(done);
   };
-  render::SceneFrames frames = render::load_scene_frames(std::move(scene), load);
+  std::unique_ptr<render::SceneFrames> frames = render::stream_scene_frames(std::move(scene), load);
   if (bar) bar->finish();
   return frames;
 }
 
-// The planned frames rendered into the folder, with a progress bar.
+// The planned frames rendered into the folder, with a progress bar. `first_written`: called once,
+// when the first frame is written.
 std::vector<nlohmann::json> render_frames(const render::SceneFrames& frames,
                                           const render::FrameSetup& setup,
                                           const render::RangePlan& plan,
-                                          const render::FrameFiles& files, bool quiet) {
+                                          const render::FrameFiles& files, bool quiet,
+                                          const std::function<void()>& first_written) {
   std::unique_ptr<render::ProgressBar> bar;
   const int count = plan.write_count();
   if (!quiet && count > 0) bar = std::make_unique<render::ProgressBar>("render", count);
   std::vector<nlohmann::json> written =
       render::render_range(frames, setup, plan, files, [&](int done) {
+        if (done == 1) first_written();
         if (bar) bar->update(done);
       });
   if (bar) bar->finish();
@@ -155,7 +160,9 @@ void run_render(const RenderArgs& a) {
   }
 
   auto t0 = Clock::now();
-  const render::SceneFrames frames = simulate_and_project(std::move(scene), a, size);
+  const std::unique_ptr<render::SceneFrames> loaded =
+      simulate_and_project(std::move(scene), a, size);
+  const render::SceneFrames& frames = *loaded;
   render::RunTimes ms;
   ms.simulate_and_project = ms_since(t0);
   const render::FrameRange range = frame_range(asked, frames.frame_count());
@@ -167,8 +174,11 @@ void run_render(const RenderArgs& a) {
                                                     frames.scene.render.warm_start_block, a.force);
   t0 = Clock::now();
   const std::vector<nlohmann::json> written =
-      render_frames(frames, setup, plan, {out, svg_style, a.masks}, a.quiet);
+      render_frames(frames, setup, plan, {out, svg_style, a.masks}, a.quiet,
+                    [&] { ms.first_frame = ms_since(t_start); });
   ms.frames = ms_since(t0);
+  // Frames are simulated while the first ones render: the feed's own time, to its last frame.
+  if (frames.feed) ms.simulate_and_project += frames.feed->ms();
 
   t0 = Clock::now();
   if (!a.no_previews) render::write_previews(frames.scene, frames.anim.fps, range, out);

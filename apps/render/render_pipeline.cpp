@@ -63,7 +63,8 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 // Mixes the two sides' colours in every hair pixel that a visible curve crosses, by area; pixels
 // outside the hair mask do not count, since the mask clips the hair image with its own coverage.
 diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionCurve>& curves,
-                                         const vector::HairMask& mask, diffusion::Image& hair) {
+                                         const vector::HairMask& mask,
+                                         const std::vector<float>& solved, diffusion::Image& hair) {
   diffusion::AntialiasRegion region;
   region.centres.assign(size_t(hair.width) * hair.height, 0);
   for (const vector::MaskPolygon& m : mask.polygons) {
@@ -71,7 +72,7 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
     region.rings.insert(region.rings.end(), m.holes.begin(), m.holes.end());
   }
   vector::fill_centres(region.centres, hair.width, hair.height, region.rings, std::uint8_t(1));
-  return diffusion::antialias(curves, hair.width, hair.height, hair.planes, &region);
+  return diffusion::antialias(curves, hair.width, hair.height, solved, hair.planes, &region);
 }
 
 }  // namespace
@@ -172,11 +173,16 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                                                                               : &warm_colours);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
-    pic.hair = {W, H, s.planes};
+    // The constraints are done with (the inspector shows them), before the images below.
+    if (!setup.keep_faces) r.problem = {};
+    warm_colours = {};
     r.solution = std::move(s.planes);  // the next frame's warm start: the plain solve
+    // The picture's own copy, since anti-aliasing changes it and not the warm start; anti-aliasing
+    // reads the plain solve and writes the copy, so no third image is made.
+    pic.hair = {W, H, r.solution};
     if (setup.antialias) {
       t0 = Clock::now();
-      r.antialias = antialias_hair(r.curves, pic.mask, pic.hair);
+      r.antialias = antialias_hair(r.curves, pic.mask, r.solution, pic.hair);
       r.time.antialias = ms_since(t0);
     }
     t0 = Clock::now();

@@ -57,7 +57,7 @@ struct FrameResult {
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
   std::vector<vector::HatchStroke> hatching;      // picture.hatching's on the hair, then
   std::vector<BodyHatch> body_hatching;           // its strokes on the body
-  diffusion::Problem problem;                     // the rasterized constraints (inspector)
+  diffusion::Problem problem;  // the rasterized constraints (inspector): only with keep_faces
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;
   // The solved RGB planes, then the blur map when there is one: the next frame's warm start.

@@ -9,11 +9,13 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
-#include <mutex>
+#include <memory>
 #include <regex>
 #include <stdexcept>
 
+#include "apps/render/frame_writer.hpp"
 #include "apps/render/render_stats.hpp"
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
@@ -42,6 +44,17 @@ bool frame_done(const fs::path& folder, int k) {
 
 std::filesystem::path record_path(const fs::path& folder, int k) {
   return folder / ".stats" / frame_file_name(k, "json");
+}
+
+// Finished frames waiting for the writer besides the one it writes: one keeps it busy while the
+// frame threads compute, more would only hold more pictures in memory.
+constexpr std::size_t kWriterDepth = 1;
+
+// The calling thread's CPU time in milliseconds: what writing costs, whatever else runs.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
 }
 
 // Whether process `pid` still runs (a temporary's writer).
@@ -141,31 +154,47 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                                          const RangePlan& plan, const FrameFiles& files,
                                          const std::function<void(int count)>& written) {
   std::vector<nlohmann::json> stats(frames.frame_count());  // null: not written
-  std::mutex mutex;
   int count = 0;
+  // Declared after what its jobs touch, so that an unwinding run stops it first. Its jobs run
+  // one at a time: `stats`, `count` and `written` need no lock.
+  FrameWriter writer(kWriterDepth);
   tbb::parallel_for(size_t(0), plan.blocks.size(), [&](size_t bi) {
     const int b = plan.blocks[bi];
     const int end = block_end(plan, b);
     std::vector<float> warm;
     for (int k = b * plan.block; k < end; ++k) {
+      // Frame k and its motion neighbour (the next one, for frame 0) may still be simulated.
+      frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
       const auto t_frame = Clock::now();
       FrameResult r = render_frame(frames.projected[k], frame_body(frames, k),
                                    frame_occluders(frames, k), frame_base(frames, k), setup,
                                    warm.empty() ? nullptr : &warm, motion_neighbour(frames, k));
       warm = std::move(r.solution);
       if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
-      const auto t_write = Clock::now();
-      write_frame_png(r.picture, files.folder / frame_file_name(k, "png"));
-      write_frame_svg(r.picture, files.folder / frame_file_name(k, "svg"), files.svg_style);
-      if (files.masks)
-        write_mask_png(r.picture, files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
-      const double write_ms = ms_since(t_write);
-      stats[k] = frame_stats(frames, k, r, write_ms, ms_since(t_frame));
-      io::write_text_atomically(record_path(files.folder, k), stats[k].dump() + "\n");
-      std::lock_guard<std::mutex> lock(mutex);
-      if (written) written(++count);
+      nlohmann::json record = frame_stats(frames, k, r, 0, 0);
+      auto picture = std::make_shared<FramePicture>(std::move(r.picture));
+      r = FrameResult{};  // the arrangement, curves and constraints go before the next frame
+      const auto t_wait = Clock::now();
+      writer.wait_for_room();
+      record["ms"]["write_wait"] = ms_since(t_wait);
+      writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
+        const auto t_write = Clock::now();
+        const double cpu_write = thread_cpu_ms();
+        write_frame_png(*picture, files.folder / frame_file_name(k, "png"));
+        write_frame_svg(*picture, files.folder / frame_file_name(k, "svg"), files.svg_style);
+        if (files.masks)
+          write_mask_png(*picture, files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
+        picture.reset();
+        record["ms"]["write"] = ms_since(t_write);
+        record["ms"]["write_cpu"] = thread_cpu_ms() - cpu_write;
+        record["ms"]["frame"] = ms_since(t_frame);
+        io::write_text_atomically(record_path(files.folder, k), record.dump() + "\n");
+        stats[k] = std::move(record);
+        if (written) written(++count);
+      });
     }
   });
+  writer.finish();
   std::vector<nlohmann::json> out;
   for (nlohmann::json& s : stats)
     if (!s.is_null()) out.push_back(std::move(s));

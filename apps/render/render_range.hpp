@@ -80,8 +80,11 @@ struct FrameFiles {
   bool masks = false;  // also write mask_NNNN.png
 };
 
-// Renders the planned frames into files.folder, blocks in parallel (TBB). `written(count)` is
-// called after each frame written, one call at a time (for a progress bar). Each frame's stats
+// Renders the planned frames into files.folder, blocks in parallel (TBB), each frame as soon as
+// it is ready (SceneFrames::wait_for: frames may still be simulated), while a writer thread
+// (frame_writer.hpp) draws and writes the finished frames; a failed write ends the run with its
+// error. `written(count)` is called after each frame written, one call at a time (for a progress
+// bar). Each frame's stats
 // record (render_stats.hpp) is kept on disk beside it (.stats/frame_NNNN.json), so a resumed run
 // still reports every frame. Returns the records of the frames written, in frame order.
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,

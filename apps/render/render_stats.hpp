@@ -21,7 +21,8 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
 
 // Milliseconds of the phases of a run.
 struct RunTimes {
-  double simulate_and_project = 0;
+  double simulate_and_project = 0;     // overlaps `frames` when the frames are streamed
+  double first_frame = 0;              // from the start of the command to the first frame written
   double frames = 0;                   // rendering and writing the frames
   double video_and_contact_sheet = 0;  // the previews
   double animated_svg = 0;             // animation.svg (--animated-svg)

@@ -17,6 +17,98 @@
 
 namespace wisp::render {
 
+namespace {
+
+// Thrown by FrameFeed::publish to end the feed's thread early.
+struct FeedStopped {};
+
+void apply_size(io::Scene& scene, const SceneFramesOptions& options) {
+  if (options.width > 0 && options.height > 0) {
+    scene.camera.width = options.width;
+    scene.camera.height = options.height;
+  }
+}
+
+// The projector of the frames, in order: each frame's head occlusion starts from the previous
+// frame's (hysteresis).
+std::unique_ptr<sim::Projector> make_projector(const SceneFrames& out) {
+  sim::ProjectorOptions projection = projector_options(out.scene);
+  projection.widths = out.anim.widths;
+  return std::make_unique<sim::Projector>(out.anim.head, out.scene.camera, projection);
+}
+
+// The body the scene draws, from the head alone.
+void add_body(SceneFrames& out) {
+  const sim::BodyParams body = body_params(out.scene);
+  if (body.head || body.neck || body.torso)
+    out.body = std::make_shared<const sim::BodyModel>(out.anim.head, body);
+}
+
+// The hair base's scalp, from frame 0's roots (and the fur's), once frame 0 is there.
+void add_scalp(SceneFrames& out) {
+  const vector::BaseStyle& base = out.scene.style.base;
+  if (!base.enabled || out.anim.frames.empty()) return;
+  // The base coat lies under the hair and the fur alike.
+  std::vector<Eigen::Vector3d> roots = sim::local_roots(out.anim.frames.front());
+  if (out.fur)
+    for (const sim::FurTuftRest& t : out.fur->tufts) roots.push_back(t.root);
+  if (roots.empty()) return;
+  out.scalp = std::make_shared<const sim::Scalp>(std::move(roots), base.spread);
+  // Any body model tessellates the head; a scene that draws no body still gets one.
+  out.head = out.body
+                 ? out.body
+                 : std::make_shared<const sim::BodyModel>(out.anim.head, body_params(out.scene));
+}
+
+}  // namespace
+
+FrameFeed::~FrameFeed() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  if (thread_.joinable()) thread_.join();
+}
+
+void FrameFeed::start(std::function<void(FrameFeed&)> make) {
+  start_ = diffusion::Clock::now();
+  thread_ = std::thread([this, make = std::move(make)] {
+    std::exception_ptr error;
+    try {
+      make(*this);
+    } catch (const FeedStopped&) {
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    error_ = error;
+    done_ = true;
+    ms_ = diffusion::ms_since(start_);
+    changed_.notify_all();
+  });
+}
+
+void FrameFeed::publish(int ready) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (stopping_) throw FeedStopped{};
+  ready_ = ready;
+  changed_.notify_all();
+}
+
+void FrameFeed::wait_for(int k) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [&] { return ready_ > k || done_; });
+  if (ready_ > k) return;
+  if (error_) std::rethrow_exception(error_);
+  throw std::logic_error("frame " + std::to_string(k) + " of " + std::to_string(count_) +
+                         " was never made");
+}
+
+double FrameFeed::ms() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return done_ ? ms_ : diffusion::ms_since(start_);
+}
+
 SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
                               const SceneFramesOptions& options) {
   return load_scene_frames(io::load_scene(scene_path), options);
@@ -26,10 +118,7 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
   SceneFrames out;
   out.scene = std::move(scene_in);
   io::Scene& scene = out.scene;
-  if (options.width > 0 && options.height > 0) {
-    scene.camera.width = options.width;
-    scene.camera.height = options.height;
-  }
+  apply_size(scene, options);
   std::optional<sim::SimSetup> setup;
   if (options.anim.empty() || scene.fur.count > 0) setup = load_sim_setup(scene);
   if (!options.anim.empty()) {
@@ -44,29 +133,66 @@ SceneFrames load_scene_frames(io::Scene scene_in, const SceneFramesOptions& opti
     for (const sim::StrandFrame& f : out.anim.frames) times.push_back(f.time);
     out.fur_motion = sim::simulate_fur(*out.fur, scene.fur, sim::Environment(*setup), times);
   }
-
-  // In order: each frame's head occlusion starts from the previous frame's (hysteresis).
-  sim::ProjectorOptions projection = projector_options(scene);
-  projection.widths = out.anim.widths;
-  sim::Projector projector(out.anim.head, scene.camera, projection);
+  const std::unique_ptr<sim::Projector> projector = make_projector(out);
   out.projected.reserve(out.anim.frames.size());
-  for (const sim::StrandFrame& f : out.anim.frames) out.projected.push_back(projector.project(f));
+  for (const sim::StrandFrame& f : out.anim.frames) out.projected.push_back(projector->project(f));
+  add_body(out);
+  add_scalp(out);
+  return out;
+}
 
-  const sim::BodyParams body = body_params(scene);
-  if (body.head || body.neck || body.torso)
-    out.body = std::make_shared<const sim::BodyModel>(out.anim.head, body);
-  const vector::BaseStyle& base = scene.style.base;
-  if (base.enabled && !out.anim.frames.empty()) {
-    // The base coat lies under the hair and the fur alike.
-    std::vector<Eigen::Vector3d> roots = sim::local_roots(out.anim.frames.front());
-    if (out.fur)
-      for (const sim::FurTuftRest& t : out.fur->tufts) roots.push_back(t.root);
-    if (!roots.empty()) {
-      out.scalp = std::make_shared<const sim::Scalp>(std::move(roots), base.spread);
-      // Any body model tessellates the head; a scene that draws no body still gets one.
-      out.head = out.body ? out.body : std::make_shared<const sim::BodyModel>(out.anim.head, body);
-    }
+std::unique_ptr<SceneFrames> stream_scene_frames(io::Scene scene,
+                                                 const SceneFramesOptions& options) {
+  if (scene.fur.count > 0)
+    return std::make_unique<SceneFrames>(load_scene_frames(std::move(scene), options));
+  auto out = std::make_unique<SceneFrames>();
+  out->scene = std::move(scene);
+  apply_size(out->scene, options);
+  // What the feed's thread works from; shared, since std::function wants a copyable callable.
+  struct Source {
+    std::optional<sim::SimSetup> setup;
+    sim::Animation file;
+    std::unique_ptr<sim::Projector> projector;
+  };
+  auto source = std::make_shared<Source>();
+  int count = 0;
+  if (options.anim.empty()) {
+    source->setup = load_sim_setup(out->scene);
+    const sim::SimSetup& setup = *source->setup;
+    out->anim.fps = setup.sim.fps;  // as sim::simulate sets them
+    out->anim.head = setup.head;
+    out->anim.widths = setup.widths;
+    count = sim::animation_frame_count(setup);
+  } else {
+    source->file = io::read_animation(options.anim);
+    out->anim.fps = source->file.fps;
+    out->anim.head = source->file.head;
+    out->anim.widths = source->file.widths;
+    count = int(source->file.frames.size());
   }
+  out->anim.frames.resize(count);
+  out->projected.resize(count);
+  source->projector = make_projector(*out);  // a bad camera is refused here, not by a wait
+  add_body(*out);
+  out->feed = std::make_unique<FrameFeed>(count);
+  // The slots are filled in order and published; the frames never move (out is on the heap)
+  // and a frame is read only after its publication.
+  SceneFrames* frames = out.get();
+  out->feed->start([frames, source](FrameFeed& feed) {
+    int k = 0;
+    const auto take = [&](sim::StrandFrame f) {
+      if (k >= frames->frame_count()) throw std::logic_error("more frames than announced");
+      frames->projected[k] = source->projector->project(f);
+      frames->anim.frames[k] = std::move(f);
+      if (k == 0) add_scalp(*frames);
+      feed.publish(++k);
+    };
+    if (source->setup) {
+      sim::simulate(*source->setup, {}, [&](const sim::StrandFrame& f) { take(f); });
+    } else {
+      for (sim::StrandFrame& f : source->file.frames) take(std::move(f));
+    }
+  });
   return out;
 }
 

@@ -7,16 +7,21 @@
 // the frames the renderer writes.
 #pragma once
 
+#include <condition_variable>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "apps/render/body_paths.hpp"
 #include "apps/render/picture.hpp"
 #include "apps/render/render_pipeline.hpp"
+#include "diffusion/timer.hpp"
 #include "io/scene.hpp"
 #include "sim/animation.hpp"
 #include "sim/body.hpp"
@@ -34,6 +39,52 @@ struct SceneFramesOptions {
   std::function<void(int done, int total)> sim_progress;
 };
 
+// Frames made one after another on a thread of their own (stream_scene_frames): the animation
+// simulated (or read) and each frame projected as soon as it is there, so that rendering starts
+// on the first frames while the others are still simulated. Frame k is ready, with everything
+// frame_body, frame_occluders, frame_base and motion_neighbour read for it, once wait_for(k)
+// returns; an error of the simulation is rethrown by every wait after it.
+class FrameFeed {
+ public:
+  explicit FrameFeed(int count) : count_(count) {}
+  // Stops the thread at its next frame and waits for it.
+  ~FrameFeed();
+  FrameFeed(const FrameFeed&) = delete;
+  FrameFeed& operator=(const FrameFeed&) = delete;
+
+  // Runs `make` on the feed's thread; it publishes frames in order.
+  void start(std::function<void(FrameFeed&)> make);
+  // Frames 0 to ready - 1 are complete. Throws (ending `make`) when the feed is being stopped.
+  void publish(int ready);
+  // Blocks until frame k is ready; rethrows the thread's error.
+  void wait_for(int k);
+  // Milliseconds from start() to the last frame (so far, while still running).
+  double ms() const;
+
+ private:
+  int count_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  int ready_ = 0;
+  bool stopping_ = false, done_ = false;
+  double ms_ = 0;
+  diffusion::Clock::time_point start_;
+  std::exception_ptr error_;
+  std::thread thread_;
+};
+
+// SceneFrames' feed. A copy of SceneFrames holds the frames made so far and no feed: copy a
+// streamed one only after waiting for its last frame.
+class FeedOwner : public std::unique_ptr<FrameFeed> {
+ public:
+  using std::unique_ptr<FrameFeed>::operator=;
+  FeedOwner() = default;
+  FeedOwner(FeedOwner&&) = default;
+  FeedOwner& operator=(FeedOwner&&) = default;
+  FeedOwner(const FeedOwner&) : std::unique_ptr<FrameFeed>() {}
+  FeedOwner& operator=(const FeedOwner&) = delete;
+};
+
 struct SceneFrames {
   io::Scene scene;  // camera size overridden when asked
   sim::Animation anim;
@@ -47,7 +98,15 @@ struct SceneFrames {
   std::shared_ptr<const sim::FurModel> fur;
   sim::FurMotion fur_motion;
 
+  // While frames are still being made (stream_scene_frames); null when all were made at load.
+  // Last, so that its thread stops before the frames it fills are destroyed.
+  FeedOwner feed;
+
   int frame_count() const { return int(projected.size()); }
+  // Blocks until frame k is ready (see FrameFeed); returns at once without a feed.
+  void wait_for(int k) const {
+    if (feed) feed->wait_for(k);
+  }
 };
 
 // Loads, simulates or reads, and projects. Errors are exceptions naming the file and field.
@@ -55,6 +114,15 @@ SceneFrames load_scene_frames(const std::filesystem::path& scene_path,
                               const SceneFramesOptions& options);
 // The same for a scene already loaded (io::load_scene).
 SceneFrames load_scene_frames(io::Scene scene, const SceneFramesOptions& options);
+
+// The same, but returning once the frames' count is known: the frames are simulated (or read)
+// and projected on a thread of their own (SceneFrames::feed), each ready as soon as it is made;
+// the renderer waits for each frame it takes (SceneFrames::wait_for). The frames are those of
+// load_scene_frames, bit for bit. Scenes that grow fur are made whole before it returns (the
+// fur's springs run over the whole shot); `options.sim_progress` is not called. Errors of the
+// scene's files and fields are thrown here, the simulation's by the waits.
+std::unique_ptr<SceneFrames> stream_scene_frames(io::Scene scene,
+                                                 const SceneFramesOptions& options);
 
 // The renderer's settings for a scene (style, solver tolerance, background).
 FrameSetup frame_setup(const io::Scene& scene);

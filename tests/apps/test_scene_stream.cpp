@@ -1,0 +1,38 @@
+// Frames streamed while they are read (render::stream_scene_frames, what `wisp render` renders
+// from) are those loaded whole (render::load_scene_frames, what the inspector shows): the same
+// projection of every frame, bit for bit, the same head poses and the same hair base.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "apps/render/scene_frames.hpp"
+#include "io/scene.hpp"
+#include "run_command.hpp"
+
+namespace render = wisp::render;
+
+TEST_CASE("streamed frames are the frames loaded whole", "[render]") {
+  const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
+  render::SceneFramesOptions o;
+  o.anim = wisp::test::simulated(scene);
+  o.width = o.height = 48;
+  const render::SceneFrames whole = render::load_scene_frames(scene, o);
+  const auto streamed = render::stream_scene_frames(wisp::io::load_scene(scene), o);
+  REQUIRE(streamed->frame_count() == whole.frame_count());
+  for (int k = 0; k < whole.frame_count(); ++k) {
+    INFO("frame " << k);
+    streamed->wait_for(k);
+    const wisp::sim::ProjectedFrame &a = streamed->projected[k], &b = whole.projected[k];
+    CHECK(a.frame == b.frame);
+    CHECK(a.focal_px == b.focal_px);
+    CHECK(streamed->anim.frames[k].time == whole.anim.frames[k].time);
+    CHECK(streamed->anim.frames[k].head.position == whole.anim.frames[k].head.position);
+    REQUIRE(a.strands.size() == b.strands.size());
+    bool same = true;
+    for (size_t s = 0; s < a.strands.size(); ++s)
+      same = same && a.strands[s].pixel == b.strands[s].pixel &&
+             a.strands[s].visible == b.strands[s].visible &&
+             a.strands[s].depth == b.strands[s].depth;
+    CHECK(same);
+    if (k == 0) CHECK(bool(streamed->scalp) == bool(whole.scalp));  // made with frame 0
+  }
+}
