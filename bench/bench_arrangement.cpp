@@ -3,7 +3,9 @@
 // exact Bezier traits on the same outlines where those finish. Two scenes: "plain" wisps like
 // the prior-work micro-benchmark (60-140 px long, gently bent, 6-12 px wide) and "mixed" hair
 // (a third each straight, wavy and curly, as in the tests). The exact run happens in a forked
-// child with a time limit, because the Bezier traits can take minutes or crash.
+// child with a time limit, because the Bezier traits can take minutes or crash. Times are wall
+// times and, for comparisons on a loaded machine, the arrangement's CPU time (sweep_cpu_ms,
+// arrangement_cpu_ms: the calling thread's).
 //
 // Arguments: [--exact-timeout SECONDS] (default 60; 0 skips the exact traits) [--repeats N]
 // [--scene plain|mixed] (default both) [--wisps N] (one size instead of 50..1000).
@@ -148,7 +150,7 @@ int run_arrangement(const std::vector<std::string>& args) {
       const int n = sizes[s];
       std::fprintf(stderr, "arrangement bench: %s, %d wisps\n", mixed ? "mixed" : "plain", n);
       const sim::ProjectedFrame frame = bench_frame(n, mixed, 1000 + n);
-      std::vector<double> build, sweep, resolve, total;
+      std::vector<double> build, sweep, resolve, total, sweep_cpu, total_cpu;
       std::vector<vector::Wisp> wisps;
       vector::WispArrangement arr;
       for (int r = 0; r < repeats; ++r) {
@@ -160,6 +162,8 @@ int run_arrangement(const std::vector<std::string>& args) {
         total.push_back(diffusion::ms_since(t1));
         sweep.push_back(arr.stats.sweep_ms);
         resolve.push_back(arr.stats.resolve_ms);
+        sweep_cpu.push_back(arr.stats.sweep_cpu_ms);
+        total_cpu.push_back(arr.stats.sweep_cpu_ms + arr.stats.resolve_cpu_ms);
       }
       auto median = [](std::vector<double> v) {
         std::sort(v.begin(), v.end());
@@ -185,10 +189,12 @@ int run_arrangement(const std::vector<std::string>& args) {
           "\"edges\": %d, \"faces\": %d, \"intersections\": %d,\n"
           "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
           "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
+          "       \"sweep_cpu_ms\": %.2f, \"arrangement_cpu_ms\": %.2f,\n"
           "       \"exact_bezier\": %s}%s\n",
           n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges, arr.stats.faces,
           arr.stats.intersections, median(build), median(sweep), median(resolve), ms,
-          1000 * ms / arr.stats.segments, exact.c_str(), s + 1 < sizes.size() ? "," : "");
+          1000 * ms / arr.stats.segments, median(sweep_cpu), median(total_cpu), exact.c_str(),
+          s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
     std::printf("    ]}%s\n", k + 1 < scenes.size() ? "," : "");

@@ -400,6 +400,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
 
   WispArrangement out;
   const auto t0 = Clock::now();
+  const double cpu0 = diffusion::thread_cpu_ms();
   std::vector<OutlineSegment> segments;
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
@@ -453,6 +454,8 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   }
   const PlanarMap map = arrange_segments(segments);
   out.stats.sweep_ms = ms_since(t0);
+  const double cpu1 = diffusion::thread_cpu_ms();
+  out.stats.sweep_cpu_ms = cpu1 - cpu0;
 
   const auto t1 = Clock::now();
   Resolver r(wisps, segments, map, options);
@@ -492,6 +495,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   out.occluder_cuts = chain_edges(map, cuts);
   if (options.keep_faces) out.view = r.view();
   out.stats.resolve_ms = ms_since(t1);
+  out.stats.resolve_cpu_ms = diffusion::thread_cpu_ms() - cpu1;
 
   out.stats.segments = int(segments.size());
   out.stats.vertices = int(map.vertices.size());

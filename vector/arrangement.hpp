@@ -77,6 +77,7 @@ struct ArrangementStats {
   int intersections = 0;  // vertices where outlines cross or touch
   double sweep_ms = 0;    // CGAL insertion and export
   double resolve_ms = 0;  // coverage, depth order, visibility, mask, polylines
+  double sweep_cpu_ms = 0, resolve_cpu_ms = 0;  // the same as CPU time of the calling thread
 };
 
 struct WispArrangement {

@@ -53,25 +53,53 @@ BandHit hit(const Wisp& w, int i, const Vector2d& p) {
 
 }  // namespace
 
+// Monotone in c, so a box [lo, hi] reaches every slab from slab_of(lo) to slab_of(hi), and a
+// point inside the box lies in one of them.
+int BandCells::slab_of(double c) const {
+  const int last = slabs - 1;
+  const double k = std::floor((c - slab_min) * slab_scale);
+  return k <= 0 ? 0 : k >= last ? last : int(k);
+}
+
 BandCells band_cells(const Wisp& w) {
   BandCells c;
   const int cells = int(w.sections.size()) - 1;
   c.quads.reserve(cells);
   c.boxes.reserve(cells);
+  Eigen::AlignedBox2d all;
   for (int i = 0; i < cells; ++i) {
     const Section &a = w.sections[i], &b = w.sections[i + 1];
     c.quads.push_back({a.left, b.left, b.right, a.right});
     Eigen::AlignedBox2d box(a.left);
     for (const Vector2d& q : {b.left, b.right, a.right}) box.extend(q);
     c.boxes.push_back(box);
+    all.extend(box);
   }
+  // About one slab per cell: a wisp's cells follow its centre, so most slabs hold a few.
+  const int slabs = c.slabs = std::max(1, cells);
+  c.axis = cells > 0 && all.sizes().y() > all.sizes().x() ? 1 : 0;
+  const double extent = cells > 0 ? all.sizes()[c.axis] : 0;
+  c.slab_min = cells > 0 ? all.min()[c.axis] : 0;
+  c.slab_scale = extent > 0 && std::isfinite(extent) ? slabs / extent : 0;
+  c.slab_begin.assign(slabs + 2, 0);
+  for (int i = 0; i < cells; ++i)
+    for (int k = c.slab_of(c.boxes[i].min()[c.axis]); k <= c.slab_of(c.boxes[i].max()[c.axis]); ++k)
+      ++c.slab_begin[k + 2];
+  for (int k = 2; k < slabs + 2; ++k) c.slab_begin[k] += c.slab_begin[k - 1];
+  c.slab_cells.resize(c.slab_begin[slabs + 1]);
+  for (int i = 0; i < cells; ++i)
+    for (int k = c.slab_of(c.boxes[i].min()[c.axis]); k <= c.slab_of(c.boxes[i].max()[c.axis]); ++k)
+      c.slab_cells[c.slab_begin[k + 1]++] = i;
+  c.slab_begin.pop_back();
   return c;
 }
 
 BandHit band_depth(const Wisp& w, const BandCells& c, const Vector2d& p) {
   std::optional<BandHit> best;
   const int cells = int(c.quads.size());
-  for (int i = 0; i < cells; ++i) {
+  const int k = c.slab_of(p[c.axis]);
+  for (int j = c.slab_begin[k]; j < c.slab_begin[k + 1]; ++j) {
+    const int i = c.slab_cells[j];
     if (outside(c.boxes[i], p, 0) || !inside(c.quads[i], p)) continue;
     const BandHit h = hit(w, i, p);
     if (!best || h.depth < best->depth) best = h;
@@ -94,7 +122,9 @@ BandHit band_depth(const Wisp& w, const Vector2d& p) {
 std::optional<BandHit> band_depth_inside(const Wisp& w, const BandCells& c, const Vector2d& p,
                                          double margin) {
   std::optional<BandHit> best;
-  for (int i = 0; i < int(c.quads.size()); ++i) {
+  const int k = c.slab_of(p[c.axis]);
+  for (int j = c.slab_begin[k]; j < c.slab_begin[k + 1]; ++j) {
+    const int i = c.slab_cells[j];
     if (outside(c.boxes[i], p, -margin) || !inside(c.quads[i], p) ||
         distance_to_cell(c.quads[i], p) < margin)
       continue;

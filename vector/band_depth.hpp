@@ -22,10 +22,18 @@ struct BandHit {
 };
 
 // A wisp's cells with their bounding boxes, for many lookups in one wisp (the arrangement asks
-// once per face and wisp covering it).
+// once per face and wisp covering it). The boxes are binned into slabs across the wisp's longer
+// axis, so a lookup tests only the cells whose box reaches the point's slab, in index order: the
+// same cells contain the point as in a scan of all of them, so the answer is the same.
 struct BandCells {
   std::vector<std::array<Eigen::Vector2d, 4>> quads;  // left_i, left_i+1, right_i+1, right_i
   std::vector<Eigen::AlignedBox2d> boxes;
+  int axis = 0;  // 0: slabs along x, 1: along y
+  int slabs = 1;
+  double slab_min = 0, slab_scale = 0;  // slab of coordinate c: (c - slab_min) * slab_scale
+  std::vector<int> slab_begin;          // slab k's cells: slab_cells[slab_begin[k] .. [k + 1])
+  std::vector<int> slab_cells;
+  int slab_of(double c) const;
 };
 BandCells band_cells(const Wisp& wisp);
 
