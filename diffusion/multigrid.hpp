@@ -36,9 +36,20 @@
 
 namespace wisp::diffusion {
 
+// The largest error that an 8-bit image cannot show: a quarter of a step of 1/255, so rounding
+// to 8 bits moves a pixel by at most one step from where the exact discrete answer rounds.
+constexpr double kEightBitError = 0.25 / 255;
+
 struct SolverOptions {
   double tolerance = 1e-5;  // relative residual per channel
-  int max_cycles = 100;     // V-cycles (or CG iterations) after the FMG start
+  // When > 0, the stopping rule is this bound on the error instead: the solve stops as soon as
+  // the estimated largest difference |u - u_exact| from the exact discrete answer, over every
+  // pixel and channel, is below it (tolerance is then not used). The estimate after a cycle that
+  // changed u by at most delta and reduced the residual by rho is delta * rho / (1 - rho) (the
+  // remaining error if later cycles kept that rate), times a safety factor; see multigrid.cpp.
+  // kEightBitError stops at what an 8-bit image can show (tested against Eigen's LDLT).
+  double max_error = 0;
+  int max_cycles = 100;  // V-cycles (or CG iterations) after the FMG start
   int pre_smooth = 2;
   int post_smooth = 2;
   bool full_multigrid = true;
@@ -61,6 +72,9 @@ struct SolveStats {
   double initial_residual = 0;           // relative, max over channels, before any cycle
   double final_residual = 0;             // relative, max over channels
   std::vector<double> residual_history;  // after FMG, then after each V-cycle
+  // With SolverOptions::max_error: the estimated largest error after FMG and after each cycle
+  // (infinity where no estimate could be made).
+  std::vector<double> error_estimates;
   double setup_ms = 0;
   double solve_ms = 0;
   bool converged = false;
