@@ -17,9 +17,10 @@
 // A coarse point whose fine pixel is fixed is itself fixed.
 //
 // Cycle. Full multigrid (FMG) start, then V(2,2) cycles until the relative residual
-// ||b - A u|| / ||b|| of every channel is below the tolerance (accelerated by conjugate
-// gradients when they slow down, see SolverOptions::krylov; refined in double precision when the
-// tolerance is below what float32 reaches). Smoothing is Gauss-Seidel in an
+// ||b - A u|| / ||b|| of every channel is below the tolerance, or, with SolverOptions::max_error,
+// until the estimated largest error is below that bound (accelerated by conjugate gradients when
+// they slow down, see SolverOptions::krylov; refined in double precision when the tolerance is
+// below what float32 reaches). Smoothing is Gauss-Seidel in an
 // order-independent colouring: red-black on the 5-point finest level, four colours on the
 // 9-point coarse levels; rows are processed in parallel (TBB) and every reduction sums in a
 // fixed order, so the result does not depend on the number of threads. The coarsest level
