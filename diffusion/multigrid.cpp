@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -32,6 +33,20 @@ void for_rows(int rows, int row_length, const Body& body) {
   }
   tbb::parallel_for(tbb::blocked_range<int>(0, rows, grain),
                     [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+}
+
+// The stopping rule of SolverOptions::max_error. A cycle maps the error e to M e; it changed the
+// answer by delta = e - M e and reduced the residual by rho. If later cycles keep that rate, the
+// error left is M e = M (I - M)^-1 delta, at most delta * rho / (1 - rho). The largest change over
+// the pixels stands for the largest error (both are dominated by the slowest, smoothest mode), and
+// kErrorSafety covers what the residual ratio and the max norm miss (calibrated against Eigen's
+// LDLT in test_multigrid.cpp, which also checks that the rule is not looser than needed).
+constexpr double kErrorSafety = 2.0;
+
+double error_estimate(double delta, double rho) {
+  if (delta == 0) return 0;
+  if (!(rho < 0.9)) return std::numeric_limits<double>::infinity();
+  return kErrorSafety * delta * rho / (1 - rho);
 }
 
 struct Level {
@@ -65,6 +80,7 @@ struct Workspace {
   std::vector<Prolongation> prolong;  // prolong[l]: from level l+1 into level l
   std::vector<std::uint8_t> fixed;
   std::vector<float> residual;
+  std::vector<float> previous;
   bool busy = false;  // a solve on this thread is using it
 };
 
@@ -77,7 +93,8 @@ class Multigrid {
         levels_(ws.levels),
         prolong_(ws.prolong),
         fixed_(ws.fixed),
-        r_(ws.residual) {}
+        r_(ws.residual),
+        previous_(ws.previous) {}
 
   Solution run(const std::vector<float>* initial_guess);
   std::vector<double> factors(int cycles, unsigned seed);
@@ -90,6 +107,7 @@ class Multigrid {
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   std::vector<float>& r_;               // the residual of the initial guess, padded
+  std::vector<float>& previous_;        // the correction before a cycle (SolverOptions::max_error)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;
@@ -118,6 +136,7 @@ class Multigrid {
   std::array<double, NC> residual_double(const std::vector<T>& u, std::vector<float>& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
   double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
+  double change_since(std::vector<float>& before) const;
   void observe(const std::vector<float>& residual_padded, const SolveStats& st) const;
   std::array<double, NC> dot(const std::vector<float>& a, const std::vector<float>& b) const;
 };
@@ -701,31 +720,39 @@ void Multigrid<NC>::restrict_residual(int l) {
   });
 }
 
+// Row by row, a cell (two fine points) at a time, so that the loops have no branch and
+// vectorise; the sums are the same, term by term, as point by point.
 template <int NC>
 void Multigrid<NC>::prolongate_add(int l) {
   Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
   const size_t nf = F.padded(), nc = C.padded();
-  const int cs = C.stride;
+  const int cs = C.stride, pairs = F.w / 2;
   for_rows(F.h, F.w * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
-      const int J = y >> 1;
+      const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
       for (int c = 0; c < NC; ++c) {
-        float* e = &F.e[c * nf + F.at(0, y)];
-        const float* ec = &C.e[c * nc];
-        for (int x = 0; x < F.w; ++x) {
-          const int I = x >> 1;
-          const size_t kc = C.at(I, J);
-          float v;
-          if (!(y & 1))
-            v = (x & 1) ? P.x0[kc] * ec[kc] + P.x1[kc] * ec[kc + 1] : ec[kc];
-          else if (!(x & 1))
-            v = P.y0[kc] * ec[kc] + P.y1[kc] * ec[kc + cs];
-          else
-            v = P.c00[kc] * ec[kc] + P.c10[kc] * ec[kc + 1] + P.c01[kc] * ec[kc + cs] +
-                P.c11[kc] * ec[kc + cs + 1];
-          e[x] += v;
+        float* __restrict e = &F.e[c * nf + F.at(0, y)];
+        const float* __restrict ec = &C.e[c * nc + row];
+        if (!(y & 1)) {
+          const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
+          for (int I = 0; I < pairs; ++I) {
+            e[2 * I] += ec[I];
+            e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
+          }
+          if (F.w & 1) e[F.w - 1] += ec[pairs];
+        } else {
+          const float* __restrict es = ec + cs;
+          const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
+          const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
+          const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
+          for (int I = 0; I < pairs; ++I) {
+            e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
+            e[2 * I + 1] +=
+                c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
+          }
+          if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
         }
       }
     }
@@ -787,7 +814,15 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
   residual_of(0, &r0, x, r);
   std::array<double, NC> rz_old{};
   double last_true = rel;
-  while (rel > tolerance && st.cycles < options_.max_cycles) {
+  // With SolverOptions::max_error. CG's steps are not a fixed-point iteration: one step may
+  // change little while the error stays (on drape its largest error fell by only 0.8 per step
+  // while single steps changed the answer by a third of it). So the change is the largest of the
+  // last four steps, and the rate the geometric mean of their residual ratios, at least 0.5.
+  const bool by_error = options_.max_error > 0;
+  double estimate = std::numeric_limits<double>::infinity();
+  std::vector<double> ratios, changes;
+  const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
+  while (!done() && st.cycles < options_.max_cycles) {
     L.rhs = r;
     std::fill(L.e.begin(), L.e.end(), 0.0f);
     vcycle(0);  // z = M r, in L.e
@@ -801,36 +836,55 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
     rz_old = rz;
     residual_of(0, nullptr, p, q);  // q = -A p
     const std::array<double, NC> pq = dot(p, q);
+    float change = 0;
     for (int c = 0; c < NC; ++c) {
       const float alpha = pq[c] < 0 ? float(-rz[c] / pq[c]) : 0.0f;
       float *xc = &x[c * n], *rc = &r[c * n];
       const float *pc = &p[c * n], *qc = &q[c * n];
+      float largest = 0;
       for (size_t i = 0; i < n; ++i) {
         xc[i] += alpha * pc[i];
         rc[i] += alpha * qc[i];
+        largest = std::max(largest, std::abs(pc[i]));
       }
+      change = std::max(change, std::abs(alpha) * largest);
     }
     std::array<double, NC> norms = dot(r, r);
     for (double& v : norms) v = std::sqrt(v);
     ++st.cycles;
+    const double prev = rel;
     rel = relative(norms);
     st.residual_history.push_back(rel);
+    if (by_error) {
+      ratios.push_back(rel / prev);
+      changes.push_back(change);
+      if (ratios.size() >= 4) {
+        double log_sum = 0, largest = 0;
+        for (size_t i = ratios.size() - 4; i < ratios.size(); ++i) {
+          log_sum += std::log(ratios[i]);
+          largest = std::max(largest, changes[i]);
+        }
+        estimate = error_estimate(largest, std::max(0.5, std::exp(log_sum / 4)));
+      }
+      st.error_estimates.push_back(estimate);
+    }
     observe(r, st);
     // The recursive residual drifts from the true one in float32: when it claims convergence
     // (or has not improved for a while), confirm with the true residual and carry on from it,
     // restarting the directions, unless float32 precision is exhausted.
-    if (rel <= tolerance || st.cycles % 16 == 0) {
+    if (done() || st.cycles % 16 == 0) {
       residual_of(0, &r0, x, r);
       std::array<double, NC> true_norms = dot(r, r);
       for (double& v : true_norms) v = std::sqrt(v);
       rel = relative(true_norms);
       st.residual_history.back() = rel;
-      if (rel > tolerance && rel > 0.5 * last_true && rel < 1e-4) break;  // float32 floor
+      if (!done() && rel > 0.5 * last_true && rel < 1e-4) break;  // float32 floor
       last_true = rel;
       std::fill(rz_old.begin(), rz_old.end(), 0.0);
     }
   }
   L.e = x;
+  if (by_error) st.converged = done();
   return rel;
 }
 
@@ -937,17 +991,47 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
   return norms;
 }
 
+// Largest change of the finest level's correction since `before`, over every point and channel;
+// `before` then holds the current correction. A maximum is exact in any order, so the result does
+// not depend on how rows are split.
+template <int NC>
+double Multigrid<NC>::change_since(std::vector<float>& before) const {
+  const Level& L = levels_[0];
+  const size_t n = L.padded();
+  std::vector<float> rows(size_t(L.h), 0.0f);
+  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      float m = 0;
+      for (int c = 0; c < NC; ++c) {
+        const float* __restrict e = &L.e[c * n + L.at(0, y)];
+        float* __restrict b = &before[c * n + L.at(0, y)];
+        for (int x = 0; x < L.w; ++x) {
+          m = std::max(m, std::abs(e[x] - b[x]));
+          b[x] = e[x];
+        }
+      }
+      rows[size_t(y)] = m;
+    }
+  });
+  return rows.empty() ? 0.0 : double(*std::max_element(rows.begin(), rows.end()));
+}
+
 // Solves A e = r0 (float32) into levels_[0].e: FMG, then CG-accelerated or plain V-cycles until
-// the residual relative to b_norm_ is below `tolerance` or float32 precision is exhausted.
+// the stopping rule holds (the residual relative to b_norm_ below `tolerance`, or with
+// SolverOptions::max_error the estimated error below it) or float32 precision is exhausted.
 template <int NC>
 double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tolerance,
                                        SolveStats& st) {
   const int count = int(levels_.size());
+  const bool by_error = options_.max_error > 0;
   Level& F = levels_[0];
   F.rhs = r0;
   std::fill(F.e.begin(), F.e.end(), 0.0f);
   double rel = relative(residual_norms(0));
-  if (rel > tolerance && options_.full_multigrid) {
+  double estimate = rel == 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
+  if (by_error) previous_.assign(F.e.size(), 0.0f);
+  if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
     for (int l = 0; l + 1 < count; ++l) {
@@ -962,21 +1046,41 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
     }
     rel = relative(residual_norms(0));
     st.residual_history.push_back(rel);
+    // No estimate yet: the FMG's change is mostly the coarse answer's interpolation error,
+    // which the finest cycle removes far faster than the error that remains (measured: the
+    // estimate would be 10-100x too small).
+    if (by_error) {
+      change_since(previous_);
+      st.error_estimates.push_back(estimate);
+    }
     observe(levels_[0].res, st);
   }
-  while (rel > tolerance && st.cycles < options_.max_cycles) {
+  double last_change = 0;  // of the previous V-cycle, 0 before the first
+  while (!done() && st.cycles < options_.max_cycles) {
     vcycle(0);
     ++st.cycles;
     const double prev = rel;
     rel = relative(residual_norms(0));
     st.residual_history.push_back(rel);
+    if (by_error) {
+      // The rate: the residual's, or the change's from one cycle to the next when larger (the
+      // residual falls up to twice as fast as the largest error). No estimate after the first
+      // cycle: with a single ratio it came out 5-50x too small where a few modes converge
+      // slowly (drawings with nearly sealed pockets, a warm start that is off in one).
+      const double change = change_since(previous_);
+      if (last_change > 0)
+        estimate = error_estimate(change, std::max(rel / prev, change / last_change));
+      last_change = change;
+      st.error_estimates.push_back(estimate);
+    }
     observe(levels_[0].res, st);
     // A cycle that gains less than 3x meets a mode the coarse grids cannot represent: from
     // here conjugate gradients, with the cycle as preconditioner, take over.
-    if (options_.krylov && rel > 0.3 * prev && rel > tolerance)
+    if (options_.krylov && rel > 0.3 * prev && !done())
       return conjugate_gradient(r0, rel, tolerance, st);
     if (rel > 0.9 * prev && rel < 1e-4) break;  // float32 floor
   }
+  if (by_error) st.converged = done();
   return rel;
 }
 
@@ -995,7 +1099,8 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
 
   // u: fixed values on fixed pixels, the guess (or 0) on free ones; unreachable pixels are 0.
   // In double precision only when the tolerance is below what float32 reaches (refinement).
-  const bool refine = options_.tolerance < 2e-6;
+  const bool by_error = options_.max_error > 0;
+  const bool refine = !by_error && options_.tolerance < 2e-6;
   const size_t np = p.pixel_count();
   const auto initial = [&](auto& u) {
     u.resize(np * NC);
@@ -1034,7 +1139,8 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
 
   const auto t_solve = Clock::now();
   if (!refine) {
-    if (rel > options_.tolerance) {
+    st.converged = rel == 0;
+    if (by_error ? rel > 0 : rel > options_.tolerance) {
       rel = solve_correction(r, options_.tolerance, st);
       add_correction(u32);
     }
@@ -1052,7 +1158,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
     u32.assign(u64.begin(), u64.end());
   }
   st.final_residual = rel;
-  st.converged = rel <= options_.tolerance;
+  if (!by_error) st.converged = rel <= options_.tolerance;
   out.planes = std::move(u32);
   st.solve_ms = ms_since(t_solve);
   return out;

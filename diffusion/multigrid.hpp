@@ -17,9 +17,10 @@
 // A coarse point whose fine pixel is fixed is itself fixed.
 //
 // Cycle. Full multigrid (FMG) start, then V(2,2) cycles until the relative residual
-// ||b - A u|| / ||b|| of every channel is below the tolerance (accelerated by conjugate
-// gradients when they slow down, see SolverOptions::krylov; refined in double precision when the
-// tolerance is below what float32 reaches). Smoothing is Gauss-Seidel in an
+// ||b - A u|| / ||b|| of every channel is below the tolerance, or, with SolverOptions::max_error,
+// until the estimated largest error is below that bound (accelerated by conjugate gradients when
+// they slow down, see SolverOptions::krylov; refined in double precision when the tolerance is
+// below what float32 reaches). Smoothing is Gauss-Seidel in an
 // order-independent colouring: red-black on the 5-point finest level, four colours on the
 // 9-point coarse levels; rows are processed in parallel (TBB) and every reduction sums in a
 // fixed order, so the result does not depend on the number of threads. The coarsest level
@@ -36,9 +37,20 @@
 
 namespace wisp::diffusion {
 
+// The largest error that an 8-bit image cannot show: a quarter of a step of 1/255, so rounding
+// to 8 bits moves a pixel by at most one step from where the exact discrete answer rounds.
+constexpr double kEightBitError = 0.25 / 255;
+
 struct SolverOptions {
   double tolerance = 1e-5;  // relative residual per channel
-  int max_cycles = 100;     // V-cycles (or CG iterations) after the FMG start
+  // When > 0, the stopping rule is this bound on the error instead: the solve stops as soon as
+  // the estimated largest difference |u - u_exact| from the exact discrete answer, over every
+  // pixel and channel, is below it (tolerance is then not used). The estimate after a cycle that
+  // changed u by at most delta and reduced the residual by rho is delta * rho / (1 - rho) (the
+  // remaining error if later cycles kept that rate), times a safety factor; see multigrid.cpp.
+  // kEightBitError stops at what an 8-bit image can show (tested against Eigen's LDLT).
+  double max_error = 0;
+  int max_cycles = 100;  // V-cycles (or CG iterations) after the FMG start
   int pre_smooth = 2;
   int post_smooth = 2;
   bool full_multigrid = true;
@@ -61,6 +73,9 @@ struct SolveStats {
   double initial_residual = 0;           // relative, max over channels, before any cycle
   double final_residual = 0;             // relative, max over channels
   std::vector<double> residual_history;  // after FMG, then after each V-cycle
+  // With SolverOptions::max_error: the estimated largest error after FMG and after each cycle
+  // (infinity where no estimate could be made).
+  std::vector<double> error_estimates;
   double setup_ms = 0;
   double solve_ms = 0;
   bool converged = false;

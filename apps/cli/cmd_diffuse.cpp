@@ -22,7 +22,7 @@ namespace {
 struct DiffuseArgs {
   std::string input, output, size, stats, xml;
   double scale = 0;
-  double tolerance = 1e-5;
+  double tolerance = 0;  // 0: stop within diffusion::kEightBitError of the exact answer
   int threads = 0;
   bool no_antialias = false;
 };
@@ -69,14 +69,24 @@ void run_diffuse(const DiffuseArgs& a) {
   check_side(height, "--scale");
 
   diffusion::SolverOptions solver;
-  solver.tolerance = a.tolerance;
+  if (a.tolerance > 0)
+    solver.tolerance = a.tolerance;
+  else
+    solver.max_error = diffusion::kEightBitError;
   diffusion::RenderStats st;
   const diffusion::Image image =
       diffusion::render_drawing(file.drawing, width, height, solver, &st, !a.no_antialias);
-  if (!st.solver.converged)
-    std::fprintf(stderr,
-                 "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
-                 st.solver.final_residual, a.tolerance);
+  if (!st.solver.converged) {
+    if (a.tolerance > 0)
+      std::fprintf(stderr,
+                   "wisp: warning: the solver stopped at relative residual %.2g (asked %.2g)\n",
+                   st.solver.final_residual, a.tolerance);
+    else
+      std::fprintf(stderr,
+                   "wisp: warning: the solver stopped before its error estimate reached 0.25/255 "
+                   "(relative residual %.2g)\n",
+                   st.solver.final_residual);
+  }
 
   t0 = diffusion::Clock::now();
   io::write_png(a.output, image);
@@ -125,7 +135,9 @@ void add_command(CLI::App& app, const std::vector<std::string>&) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--stats", args->stats, "Write timings and solver statistics as JSON");
   cmd->add_option("--xml", args->xml, "Also write the drawing as SceneXML (a format conversion)");
-  cmd->add_option("--tolerance", args->tolerance, "Relative residual of the solve (default 1e-5)")
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Stop the solve at this relative residual instead of within 0.25/255 of "
+                  "the exact discrete answer (the default)")
       ->check(CLI::Range(1e-12, 1e-1));
   cmd->add_flag("--no-antialias", args->no_antialias,
                 "Keep each pixel's solved colour along sharp curves (today's output of other "

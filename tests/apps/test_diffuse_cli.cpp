@@ -56,8 +56,10 @@ TEST_CASE("wisp diffuse renders every external drawing, unblurred ones exactly a
                         " --size 256x256 --no-antialias")
                 .exit_code == 0);
     const cv::Mat sharp = cv::imread(sharp_png, cv::IMREAD_COLOR);
+    wisp::diffusion::SolverOptions solver;  // wisp diffuse's default stopping rule
+    solver.max_error = wisp::diffusion::kEightBitError;
     const auto u =
-        wisp::diffusion::render_drawing(file.drawing, 256, 256, {}, nullptr, false).planes;
+        wisp::diffusion::render_drawing(file.drawing, 256, 256, solver, nullptr, false).planes;
     const size_t n = 256 * 256;
     int differ = 0;
     for (size_t i = 0; i < n; ++i) {
