@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -252,47 +251,19 @@ void draw_stroke(const PlannedStroke& s, int w, int strand, int rank, const Hatc
   const int n = std::clamp(kCoarse * int(std::ceil(longest / kSampleStep)), kCoarse, 8192);
   std::vector<Sample> samples;
   samples.reserve(n + 1);
-  for (int i = 0; i <= n; ++i) {
-    Sample next = sample(fa + (fb - fa) * i / n);
-    // Between two samples that are both on, a sliver of another wisp may still cross the
-    // stroke: halve the step there until a sample lands outside or the segment is 1e-3 px.
-    if (!samples.empty() && samples.back().on && next.on) {
-      std::vector<Sample> extra;
-      const std::function<void(const Sample&, const Sample&)> refine = [&](const Sample& a,
-                                                                           const Sample& b) {
-        if ((b.p - a.p).norm() < 1e-3 || !regions.crosses(w, a.p, b.p)) return;
-        const Sample m = sample(0.5 * (a.f + b.f));
-        refine(a, m);
-        extra.push_back(m);
-        if (m.on) refine(m, b);
-      };
-      refine(samples.back(), next);
-      samples.insert(samples.end(), extra.begin(), extra.end());
-    }
-    samples.push_back(next);
-  }
-  const int count = int(samples.size()) - 1;
-  // Where `on` flips between two samples: bisection to 1e-4 of the stroke... or finer.
-  const auto edge = [&](const Sample& a, const Sample& b) {
-    double lo = a.f, hi = b.f;
-    const int iters =
-        std::clamp(int(std::ceil(std::log2(std::max(1.0, longest * kCoarse / n / 1e-4)))), 8, 30);
-    for (int k = 0; k < iters; ++k) {
-      const double m = 0.5 * (lo + hi);
-      (sample(m).on == a.on ? lo : hi) = m;
-    }
-    return sample(a.on ? lo : hi);  // the side that is on
+  for (int i = 0; i <= n; ++i) samples.push_back(sample(fa + (fb - fa) * i / n));
+  const auto between = [&](const Sample& a, const Sample& b, double m) {
+    return sample((1 - m) * a.f + m * b.f);
   };
-  size_t i = 0;
-  while (i <= size_t(count)) {
-    if (!samples[i].on) {
-      ++i;
-      continue;
-    }
-    std::vector<Sample> run;
-    if (i > 0) run.push_back(edge(samples[i - 1], samples[i]));
-    while (i <= size_t(count) && samples[i].on) run.push_back(samples[i++]);
-    if (i <= size_t(count)) run.push_back(edge(samples[i - 1], samples[i]));
+  // A sliver of another wisp may cross the stroke between two samples that are on.
+  const auto crosses = [&](const Sample& a, const Sample& b) {
+    return (b.p - a.p).norm() >= 1e-3 && regions.crosses(w, a.p, b.p);
+  };
+  // Where `on` flips: bisection to 1e-4 of the stroke... or finer.
+  const int iterations =
+      std::clamp(int(std::ceil(std::log2(std::max(1.0, longest * kCoarse / n / 1e-4)))), 8, 30);
+  for (const std::vector<Sample>& run : runs_on(
+           samples, between, crosses, [&](const Sample&, const Sample&) { return iterations; })) {
     if (run.size() < 2) continue;
     std::vector<Vector2d> pts;
     std::vector<double> arc = {0};

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -92,6 +93,51 @@ std::vector<HatchStroke> hatch_hair(const sim::ProjectedFrame& frame,
                                     const std::vector<Wisp>& wisps,
                                     const WispArrangement& arrangement, const HairStyle& style,
                                     int width, int height);
+
+// The runs of a sampled path where a predicate holds, their ends moved onto where it flips:
+// clips the hair's and the body's pen strokes to their regions. `samples` follow the path, each
+// with a bool `on`; between(a, b, m) is the sample at fraction m of the way from a to b.
+// Between neighbours that are both on, a sliver of what is off may still cut the path: the step
+// is halved there while crosses(a, b) says the region's edge may pass between the two (it says
+// no below the distance worth resolving). Each run's ends take edge_iterations(a, b) bisection
+// steps between its last sample on one side and the first on the other.
+template <class Sample, class Between, class Crosses, class EdgeIterations>
+std::vector<std::vector<Sample>> runs_on(const std::vector<Sample>& samples, Between between,
+                                         Crosses crosses, EdgeIterations edge_iterations) {
+  std::vector<Sample> dense;
+  const std::function<void(const Sample&, const Sample&)> refine = [&](const Sample& a,
+                                                                       const Sample& b) {
+    if (!crosses(a, b)) return;
+    const Sample m = between(a, b, 0.5);
+    refine(a, m);
+    dense.push_back(m);
+    if (m.on) refine(m, b);
+  };
+  for (size_t k = 0; k < samples.size(); ++k) {
+    if (k > 0 && samples[k - 1].on && samples[k].on) refine(samples[k - 1], samples[k]);
+    dense.push_back(samples[k]);
+  }
+  const auto edge = [&](const Sample& a, const Sample& b) {
+    double lo = 0, hi = 1;
+    for (int k = edge_iterations(a, b); k > 0; --k) {
+      const double m = 0.5 * (lo + hi);
+      (between(a, b, m).on == a.on ? lo : hi) = m;
+    }
+    return between(a, b, a.on ? lo : hi);  // the side that is on
+  };
+  std::vector<std::vector<Sample>> runs;
+  for (size_t i = 0; i < dense.size();) {
+    if (!dense[i].on) {
+      ++i;
+      continue;
+    }
+    std::vector<Sample>& run = runs.emplace_back();
+    if (i > 0) run.push_back(edge(dense[i - 1], dense[i]));
+    while (i < dense.size() && dense[i].on) run.push_back(dense[i++]);
+    if (i < dense.size()) run.push_back(edge(dense[i - 1], dense[i]));
+  }
+  return runs;
+}
 
 // The width factor of a pen stroke at fraction f of its length: thin at both ends.
 double pen_profile(double f);

@@ -250,47 +250,24 @@ std::vector<BodyHatch> hatch_body(const sim::ProjectedBody& body, const vector::
                 std::max(1, int(std::ceil((line[k + 1].p - line[k].p).norm() / kSampleStep)));
             for (int j = 0; j < m; ++j) {
               const Node n = mix(line[k], line[k + 1], double(j) / m);
-              const Sample next{n, on(n)};
-              // A tip of hair may cross between two samples that show skin: halve the step there
-              // until a sample lands on the hair or the segment is 1e-3 px.
-              if (!samples.empty() && samples.back().on && next.on) {
-                std::vector<Sample> extra;
-                const std::function<void(const Sample&, const Sample&)> refine =
-                    [&](const Sample& a, const Sample& b) {
-                      if ((b.n.p - a.n.p).norm() < 1e-3 || !view.hair_crosses(a.n.p, b.n.p)) return;
-                      const Node mid = mix(a.n, b.n, 0.5);
-                      const Sample ms{mid, on(mid)};
-                      refine(a, ms);
-                      extra.push_back(ms);
-                      if (ms.on) refine(ms, b);
-                    };
-                refine(samples.back(), next);
-                samples.insert(samples.end(), extra.begin(), extra.end());
-              }
-              samples.push_back(next);
+              samples.push_back({n, on(n)});
             }
           }
           if (!line.empty()) samples.push_back({line.back(), on(line.back())});
-          const auto edge = [&](const Sample& a, const Sample& b) {
-            double lo = 0, hi = 1;
-            const int iters = std::clamp(
-                int(std::ceil(std::log2(std::max(1.0, (b.n.p - a.n.p).norm() / 1e-4)))), 1, 30);
-            for (int k = 0; k < iters; ++k) {
-              const double m = 0.5 * (lo + hi);
-              (on(mix(a.n, b.n, m)) == a.on ? lo : hi) = m;
-            }
-            return Sample{mix(a.n, b.n, a.on ? lo : hi), true};
+          const auto between = [&](const Sample& a, const Sample& b, double m) {
+            const Node n = mix(a.n, b.n, m);
+            return Sample{n, on(n)};
           };
-          size_t i = 0;
-          while (i < samples.size()) {
-            if (!samples[i].on) {
-              ++i;
-              continue;
-            }
-            std::vector<Sample> run;
-            if (i > 0) run.push_back(edge(samples[i - 1], samples[i]));
-            while (i < samples.size() && samples[i].on) run.push_back(samples[i++]);
-            if (i < samples.size()) run.push_back(edge(samples[i - 1], samples[i]));
+          // A tip of hair may cross between two samples that show skin.
+          const auto crosses = [&](const Sample& a, const Sample& b) {
+            return (b.n.p - a.n.p).norm() >= 1e-3 && view.hair_crosses(a.n.p, b.n.p);
+          };
+          const auto edge_iterations = [](const Sample& a, const Sample& b) {
+            return std::clamp(
+                int(std::ceil(std::log2(std::max(1.0, (b.n.p - a.n.p).norm() / 1e-4)))), 1, 30);
+          };
+          for (const std::vector<Sample>& run :
+               vector::runs_on(samples, between, crosses, edge_iterations)) {
             std::vector<Vector2d> pts;
             std::vector<double> arc = {0};
             for (const Sample& r : run) {
