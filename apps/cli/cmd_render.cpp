@@ -149,7 +149,7 @@ void run_render(const RenderArgs& a) {
   const int cores = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
   const int parallel = frames_in_memory(a, size_field, width, height, cores);
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(parallel));
-  if (scene.render.video) {
+  if (scene.render.video && !a.no_previews) {  // --no-previews writes no video: needs no module
     try {
       io::check_video(out / "preview.mp4", width, height, scene.sim.fps);
     } catch (const io::VideoModuleError&) {

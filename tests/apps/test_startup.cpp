@@ -71,6 +71,19 @@ TEST_CASE("wisp --help and wisp render --help load no stage library, video only 
   CHECK(any_of(render, {"videoio", "imgcodecs", "avcodec", "wisp-video"}) == "");
 }
 
+TEST_CASE("wisp render --no-previews writes no video and loads no video module", "[cli][startup]") {
+  const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
+  const std::string out = fresh_folder("startup_render");
+  std::string output;
+  const auto libraries = loaded_libraries(
+      kBin + "/wisp render " + scene + " -o " + out +
+          " --size 48x48 --frames 0:1 -q --no-previews --anim " + wisp::test::simulated(scene),
+      &output);
+  INFO(output);
+  CHECK(std::filesystem::exists(out + "/frame_0000.png"));
+  CHECK(any_of(libraries, {"videoio", "avcodec", "wisp-video"}) == "");
+}
+
 TEST_CASE("wisp names the command executable it cannot find", "[cli][startup]") {
   // The dispatcher alone, without the wisp-<command> executables beside it.
   const std::string bin = fresh_folder("startup_alone");
