@@ -45,6 +45,7 @@ struct FrameTimings {
   double antialias = 0;  // re-sampling the pixels that visible curves cross
   double blur = 0;       // the blur values and the blur map's solve
   double hatching = 0;   // laying and clipping the hatch strokes
+  double body = 0;       // before the hair: the body's paths and occluders, the hair base
 };
 
 struct FrameResult {

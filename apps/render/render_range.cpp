@@ -166,9 +166,14 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
       // Frame k and its motion neighbour (the next one, for frame 0) may still be simulated.
       frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
       const auto t_frame = Clock::now();
-      FrameResult r = render_frame(frames.projected[k], frame_body(frames, k),
-                                   frame_occluders(frames, k), frame_base(frames, k), setup,
-                                   warm.empty() ? nullptr : &warm, motion_neighbour(frames, k));
+      BodyLayer body = frame_body(frames, k);
+      std::vector<vector::Occluder> occluders = frame_occluders(frames, k);
+      vector::HairBase base = frame_base(frames, k);
+      const double body_ms = ms_since(t_frame);
+      FrameResult r =
+          render_frame(frames.projected[k], std::move(body), std::move(occluders), std::move(base),
+                       setup, warm.empty() ? nullptr : &warm, motion_neighbour(frames, k));
+      r.time.body = body_ms;
       warm = std::move(r.solution);
       if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
       nlohmann::json record = frame_stats(frames, k, r, 0, 0);
