@@ -2,6 +2,7 @@
 #include "apps/render/render_range.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <unistd.h>
 
@@ -170,9 +171,15 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
       std::vector<vector::Occluder> occluders = frame_occluders(frames, k);
       vector::HairBase base = frame_base(frames, k);
       const double body_ms = ms_since(t_frame);
-      FrameResult r =
-          render_frame(frames.projected[k], std::move(body), std::move(occluders), std::move(base),
-                       setup, warm.empty() ? nullptr : &warm, motion_neighbour(frames, k));
+      // Isolated: while this frame's parallel loops wait for a stolen part, the thread must not
+      // start another block's frame nested inside this one (a third frame in flight, with its
+      // own solver workspace, and this frame held back until that one ends).
+      FrameResult r;
+      tbb::this_task_arena::isolate([&] {
+        r = render_frame(frames.projected[k], std::move(body), std::move(occluders),
+                         std::move(base), setup, warm.empty() ? nullptr : &warm,
+                         motion_neighbour(frames, k));
+      });
       r.time.body = body_ms;
       warm = std::move(r.solution);
       if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
