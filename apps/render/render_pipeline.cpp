@@ -77,10 +77,9 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
 
 }  // namespace
 
-FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
-                         std::vector<vector::Occluder> occluders, vector::HairBase base,
-                         const FrameSetup& setup, const std::vector<float>* warm_start,
-                         const sim::ProjectedFrame* neighbour) {
+FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
+                            std::vector<vector::Occluder> occluders, vector::HairBase base,
+                            const FrameSetup& setup) {
   const auto t_start = Clock::now();
   FrameResult r;
   const int W = frame.width, H = frame.height;
@@ -158,7 +157,18 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
     t0 = Clock::now();
     r.problem = diffusion::rasterize(r.curves, W, H);
     r.time.rasterize = ms_since(t0);
-    t0 = Clock::now();
+  }
+  r.time.total = ms_since(t_start);
+  return r;
+}
+
+void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
+                    const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
+  const auto t_start = Clock::now();
+  FramePicture& pic = r.picture;
+  const int W = pic.width, H = pic.height;
+  if (!r.curves.empty()) {
+    auto t0 = Clock::now();
     // The warm start holds the colours, then the previous blur map when there was one.
     const size_t n = r.problem.pixel_count();
     const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);
@@ -198,7 +208,16 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
     }
   }
   if (!setup.keep_faces) r.arrangement.view = {};
-  r.time.total = ms_since(t_start);
+  r.time.total += ms_since(t_start);
+}
+
+FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
+                         std::vector<vector::Occluder> occluders, vector::HairBase base,
+                         const FrameSetup& setup, const std::vector<float>* warm_start,
+                         const sim::ProjectedFrame* neighbour) {
+  FrameResult r =
+      render_geometry(frame, std::move(body), std::move(occluders), std::move(base), setup);
+  render_shading(r, frame, setup, warm_start, neighbour);
   return r;
 }
 

@@ -1,7 +1,7 @@
 // A range of frames rendered into a folder, resumably (see render_range.hpp).
 #include "apps/render/render_range.hpp"
 
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include <unistd.h>
@@ -159,53 +159,90 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
   // Declared after what its jobs touch, so that an unwinding run stops it first. Its jobs run
   // one at a time: `stats`, `count` and `written` need no lock.
   FrameWriter writer(kWriterDepth);
-  tbb::parallel_for(size_t(0), plan.blocks.size(), [&](size_t bi) {
-    const int b = plan.blocks[bi];
-    const int end = block_end(plan, b);
-    std::vector<float> warm;
-    for (int k = b * plan.block; k < end; ++k) {
-      // Frame k and its motion neighbour (the next one, for frame 0) may still be simulated.
-      frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
-      const auto t_frame = Clock::now();
-      BodyLayer body = frame_body(frames, k);
-      std::vector<vector::Occluder> occluders = frame_occluders(frames, k);
-      vector::HairBase base = frame_base(frames, k);
-      const double body_ms = ms_since(t_frame);
-      // Isolated: while this frame's parallel loops wait for a stolen part, the thread must not
-      // start another block's frame nested inside this one (a third frame in flight, with its
-      // own solver workspace, and this frame held back until that one ends).
-      FrameResult r;
-      tbb::this_task_arena::isolate([&] {
-        r = render_frame(frames.projected[k], std::move(body), std::move(occluders),
-                         std::move(base), setup, warm.empty() ? nullptr : &warm,
-                         motion_neighbour(frames, k));
-      });
-      r.time.body = body_ms;
-      warm = std::move(r.solution);
-      if (!plan.write[k]) continue;  // solved only to warm-start the next frame of the block
-      nlohmann::json record = frame_stats(frames, k, r, 0, 0);
-      auto picture = std::make_shared<FramePicture>(std::move(r.picture));
-      r = FrameResult{};  // the arrangement, curves and constraints go before the next frame
-      const auto t_wait = Clock::now();
-      writer.wait_for_room();
-      record["ms"]["write_wait"] = ms_since(t_wait);
-      writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
-        const auto t_write = Clock::now();
-        const double cpu_write = thread_cpu_ms();
-        write_frame_png(*picture, files.folder / frame_file_name(k, "png"));
-        write_frame_svg(*picture, files.folder / frame_file_name(k, "svg"), files.svg_style);
-        if (files.masks)
-          write_mask_png(*picture, files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
-        picture.reset();
-        record["ms"]["write"] = ms_since(t_write);
-        record["ms"]["write_cpu"] = thread_cpu_ms() - cpu_write;
-        record["ms"]["frame"] = ms_since(t_frame);
-        io::write_text_atomically(record_path(files.folder, k), record.dump() + "\n");
-        stats[k] = std::move(record);
-        if (written) written(++count);
-      });
-    }
-  });
+  // The frames to compute in order: every frame of each planned block up to its last one to
+  // write (the earlier ones only warm-start the later ones).
+  std::vector<int> work;
+  for (int b : plan.blocks)
+    for (int k = b * plan.block; k < block_end(plan, b); ++k) work.push_back(k);
+  // A frame in flight between the two halves of render_frame.
+  struct InFlight {
+    int k = 0;
+    Clock::time_point start;
+    FrameResult r;
+  };
+  // Frames overlap in a pipeline: the geometry of any frame may run while a frame is shaded, and
+  // the shading runs one frame at a time in order, each warm-started by the frame before when
+  // both are in the same block. So the frames of one block keep both cores busy (with blocks in
+  // parallel, the last block ran alone on one), one solve is in flight at a time (one solver
+  // workspace's memory instead of one per thread), and the pixels are those of a serial run.
+  std::vector<float> warm;
+  std::size_t next = 0;
+  const std::size_t tokens = std::size_t(tbb::this_task_arena::max_concurrency()) + 1;
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) -> std::size_t {
+                                            if (next == work.size()) fc.stop();
+                                            return next++;
+                                          }) &
+          tbb::make_filter<std::size_t, std::shared_ptr<InFlight>>(
+              tbb::filter_mode::parallel,
+              [&](std::size_t i) {
+                auto f = std::make_shared<InFlight>();
+                const int k = f->k = work[i];
+                // Frame k and its motion neighbour (the next one, for frame 0) may still be
+                // simulated.
+                frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
+                f->start = Clock::now();
+                BodyLayer body = frame_body(frames, k);
+                std::vector<vector::Occluder> occluders = frame_occluders(frames, k);
+                vector::HairBase base = frame_base(frames, k);
+                const double body_ms = ms_since(f->start);
+                // Isolated: while a frame's parallel loops wait for a stolen part, the thread
+                // must not start another frame's work nested inside (holding this one back).
+                tbb::this_task_arena::isolate([&] {
+                  f->r = render_geometry(frames.projected[k], std::move(body), std::move(occluders),
+                                         std::move(base), setup);
+                });
+                f->r.time.body = body_ms;
+                return f;
+              }) &
+          tbb::make_filter<std::shared_ptr<InFlight>, void>(
+              tbb::filter_mode::serial_in_order, [&](std::shared_ptr<InFlight> f) {
+                const int k = f->k;
+                FrameResult& r = f->r;
+                if (k % plan.block == 0) warm.clear();  // a block starts cold
+                tbb::this_task_arena::isolate([&] {
+                  render_shading(r, frames.projected[k], setup, warm.empty() ? nullptr : &warm,
+                                 motion_neighbour(frames, k));
+                });
+                warm = std::move(r.solution);
+                if (!plan.write[k]) return;  // solved only to warm-start the next frame
+                nlohmann::json record = frame_stats(frames, k, r, 0, 0);
+                auto picture = std::make_shared<FramePicture>(std::move(r.picture));
+                const auto t_frame = f->start;
+                f.reset();  // the arrangement, curves and constraints go before the next frame
+                const auto t_wait = Clock::now();
+                writer.wait_for_room();
+                record["ms"]["write_wait"] = ms_since(t_wait);
+                writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
+                  const auto t_write = Clock::now();
+                  const double cpu_write = thread_cpu_ms();
+                  write_frame_png(*picture, files.folder / frame_file_name(k, "png"));
+                  write_frame_svg(*picture, files.folder / frame_file_name(k, "svg"),
+                                  files.svg_style);
+                  if (files.masks)
+                    write_mask_png(*picture,
+                                   files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
+                  picture.reset();
+                  record["ms"]["write"] = ms_since(t_write);
+                  record["ms"]["write_cpu"] = thread_cpu_ms() - cpu_write;
+                  record["ms"]["frame"] = ms_since(t_frame);
+                  io::write_text_atomically(record_path(files.folder, k), record.dump() + "\n");
+                  stats[k] = std::move(record);
+                  if (written) written(++count);
+                });
+              }));
   writer.finish();
   std::vector<nlohmann::json> out;
   for (nlohmann::json& s : stats)
