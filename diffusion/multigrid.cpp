@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <stdexcept>
 
@@ -74,15 +76,59 @@ struct Prolongation {
 
 // The arrays of a solve that outlive it: levels, prolongations, the fixed mask and the residual.
 // Each thread keeps one (see solve_multigrid) and solves reuse its allocations: at 1024^2 a
-// fresh set costs about 70 MB of page faults per frame, a fifth of the solve.
+// fresh set costs about 70 MB of page faults per frame, a fifth of the solve. They also keep
+// the operators, so that the next solve of the same size rebuilds only the coarse points whose
+// stencils can have changed (consecutive frames differ around the hair only; see setup()).
 struct Workspace {
   std::vector<Level> levels;
   std::vector<Prolongation> prolong;  // prolong[l]: from level l+1 into level l
   std::vector<std::uint8_t> fixed;
   std::vector<float> residual;
   std::vector<float> previous;
+  // The size of the problem whose operators `levels` and `prolong` hold; 0 when they hold none
+  // (or a setup did not finish).
+  int width = 0, height = 0;
   bool busy = false;  // a solve on this thread is using it
 };
+
+// Sets `stored` to `value` and says whether its bits changed.
+bool update(float& stored, float value) {
+  if (std::memcmp(&stored, &value, sizeof value) == 0) return false;
+  stored = value;
+  return true;
+}
+
+// The coarse points of C (padded flags) within `radius` fine points, in both directions, of a
+// fine point of F flagged in `changed` (padded flags on F).
+std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
+                                       const std::vector<std::uint8_t>& changed, int radius) {
+  // Per fine row: which coarse columns have a flag within the radius (a prefix count of the row).
+  std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
+  std::vector<int> count(size_t(F.w) + 1);
+  for (int y = 0; y < F.h; ++y) {
+    const std::uint8_t* row = &changed[F.at(0, y)];
+    for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + row[x];
+    std::uint8_t* out = &columns[size_t(y) * C.w];
+    for (int I = 0; I < C.w; ++I)
+      out[I] = count[std::min(F.w, 2 * I + radius + 1)] > count[std::max(0, 2 * I - radius)];
+  }
+  std::vector<std::uint8_t> out(C.padded(), 0);
+  for (int J = 0; J < C.h; ++J) {
+    std::uint8_t* o = &out[C.at(0, J)];
+    for (int y = std::max(0, 2 * J - radius); y <= std::min(F.h - 1, 2 * J + radius); ++y) {
+      const std::uint8_t* in = &columns[size_t(y) * C.w];
+      for (int I = 0; I < C.w; ++I) o[I] |= in[I];
+    }
+  }
+  return out;
+}
+
+// How far, in fine points, a change of the fine operator reaches into the coarse level: a coarse
+// point's Galerkin stencil reads the stencils of the fine points within 1 of its own and the
+// prolongation rows of those within 2; a prolongation row reads the stencils within 1 of its
+// point and the coarse points around; a stencil reads the couplings stored within 1. That is 5;
+// one more for safety (the test of the rebuild compares it with a full one, bit for bit).
+constexpr int kChangeReach = 6;
 
 template <int NC>
 class Multigrid {
@@ -90,6 +136,7 @@ class Multigrid {
   Multigrid(const Problem& problem, const SolverOptions& options, Workspace& ws)
       : problem_(problem),
         options_(options),
+        ws_(ws),
         levels_(ws.levels),
         prolong_(ws.prolong),
         fixed_(ws.fixed),
@@ -102,6 +149,7 @@ class Multigrid {
  private:
   const Problem& problem_;
   const SolverOptions& options_;
+  Workspace& ws_;
   std::vector<Level>& levels_;
   std::vector<Prolongation>& prolong_;  // prolong_[l]: from level l+1 into level l
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
@@ -113,10 +161,15 @@ class Multigrid {
   std::vector<size_t> coarse_points_;
 
   int mark_fixed(std::vector<std::uint8_t>& fixed) const;
-  void build_finest(const std::vector<std::uint8_t>& fixed);
-  void build_coarse(int l);
-  void build_prolongation(int l);  // prolong_[l], once levels_[l + 1] knows its points
-  void galerkin_product(int l);    // the operator of levels_[l + 1]: P^T A_l P
+  // The builders of the levels' operators return which points' stored operator (diagonal,
+  // couplings, alive) changed, as padded flags; `rebuild` is the points to compute (padded flags
+  // on the level built; nullptr: every point, on freshly zeroed arrays, and nothing is returned).
+  std::vector<std::uint8_t> build_finest(const std::vector<std::uint8_t>& fixed, bool full);
+  std::vector<std::uint8_t> build_coarse(int l, const std::vector<std::uint8_t>* changed);
+  // prolong_[l], once levels_[l + 1] knows its points
+  void build_prolongation(int l, const std::vector<std::uint8_t>* rebuild);
+  // The operator of levels_[l + 1]: P^T A_l P
+  std::vector<std::uint8_t> galerkin_product(int l, const std::vector<std::uint8_t>* rebuild);
   void build_coarsest();
   void smooth(int l, int sweeps, bool reverse);
   void relax_row(Level& L, int y, int x_parity, float* buf);
@@ -162,7 +215,8 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
 // pixel's anchor weight: an anchor is a link to a neighbour that holds data. The Galerkin coarse
 // levels and the smoother see anchors through the diagonal only.
 template <int NC>
-void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
+std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed,
+                                                      bool full) {
   const Problem& p = problem_;
   Level& L = levels_[0];
   L.w = p.width;
@@ -170,25 +224,46 @@ void Multigrid<NC>::build_finest(const std::vector<std::uint8_t>& fixed) {
   L.stride = L.w + 2;
   L.nine_point = false;
   const size_t n = L.padded();
-  L.diag.assign(n, 0.0f);
-  L.inv_diag.assign(n, 0.0f);
-  L.ae.assign(n, 0.0f);
-  L.as.assign(n, 0.0f);
-  L.alive.assign(n, 0);
-  for (int y = 0; y < L.h; ++y)
-    for (int x = 0; x < L.w; ++x) {
-      const size_t i = p.index(x, y), k = L.at(x, y);
-      const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
-      const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
-      const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
-      if (!fixed[i]) {
-        L.alive[k] = 1;
-        L.diag[k] = float(open_e + open_s + open_w + open_n) + p.anchor_weight[i];
-        L.inv_diag[k] = 1.0f / L.diag[k];  // > 0: a free reached pixel is anchored or linked
-        if (open_e && !fixed[i + 1]) L.ae[k] = 1.0f;
-        if (open_s && !fixed[i + p.width]) L.as[k] = 1.0f;
+  std::vector<std::uint8_t> changed;
+  if (full) {
+    for (auto* v : {&L.diag, &L.inv_diag, &L.ae, &L.as}) v->assign(n, 0.0f);
+    L.alive.assign(n, 0);
+  } else {
+    changed.assign(n, 0);
+  }
+  for_rows(L.h, L.w, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < L.w; ++x) {
+        const size_t i = p.index(x, y), k = L.at(x, y);
+        const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
+        const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
+        const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
+        float diag = 0, inv_diag = 0, ae = 0, as = 0;
+        if (!fixed[i]) {
+          diag = float(open_e + open_s + open_w + open_n) + p.anchor_weight[i];
+          inv_diag = 1.0f / diag;  // > 0: a free reached pixel is anchored or linked
+          if (open_e && !fixed[i + 1]) ae = 1.0f;
+          if (open_s && !fixed[i + p.width]) as = 1.0f;
+        }
+        const std::uint8_t alive = !fixed[i];
+        if (full) {
+          L.alive[k] = alive;
+          L.diag[k] = diag;
+          L.inv_diag[k] = inv_diag;
+          L.ae[k] = ae;
+          L.as[k] = as;
+          continue;
+        }
+        bool c = L.alive[k] != alive;
+        L.alive[k] = alive;
+        c |= update(L.diag[k], diag);
+        c |= update(L.inv_diag[k], inv_diag);
+        c |= update(L.ae[k], ae);
+        c |= update(L.as[k], as);
+        changed[k] = c;
       }
-    }
+  });
+  return changed;
 }
 
 // The operator of a level around one of its points, with the couplings to all eight neighbours
@@ -216,8 +291,12 @@ Stencil stencil_at(const Level& F, size_t k) {
 
 // Level l+1: the even points of level l, with an operator-dependent prolongation into level l
 // and the Galerkin coarse operator A_{l+1} = P^T A_l P.
+// With `changed` (the fine points whose stored operator changed since the workspace's last
+// setup), only the coarse points within kChangeReach of one are rebuilt: the others' prolongation
+// and stencil cannot have changed, and the result is that of a full rebuild, bit for bit.
 template <int NC>
-void Multigrid<NC>::build_coarse(int l) {
+std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
+                                                      const std::vector<std::uint8_t>* changed) {
   const Level& F = levels_[l];
   Level& C = levels_[l + 1];
   C.w = (F.w + 1) / 2;
@@ -225,17 +304,33 @@ void Multigrid<NC>::build_coarse(int l) {
   C.stride = C.w + 2;
   C.nine_point = true;
   const size_t nc = C.padded();
-  C.alive.assign(nc, 0);
+  if (!changed) {
+    C.alive.assign(nc, 0);
+    for (int J = 0; J < C.h; ++J)
+      for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
+    build_prolongation(l, nullptr);
+    return galerkin_product(l, nullptr);
+  }
+  const std::vector<std::uint8_t> rebuild = near_changed(F, C, *changed, kChangeReach);
+  std::vector<std::uint8_t> alive_changed(nc, 0);
   for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
-  build_prolongation(l);
-  galerkin_product(l);
+    for (int I = 0; I < C.w; ++I) {
+      const size_t kc = C.at(I, J);
+      if (!rebuild[kc]) continue;
+      const std::uint8_t alive = F.alive[F.at(2 * I, 2 * J)];
+      alive_changed[kc] = C.alive[kc] != alive;
+      C.alive[kc] = alive;
+    }
+  build_prolongation(l, &rebuild);
+  std::vector<std::uint8_t> out = galerkin_product(l, &rebuild);
+  for (size_t k = 0; k < nc; ++k) out[k] |= alive_changed[k];
+  return out;
 }
 
 // Operator-dependent prolongation (Dendy 1982) from level l+1 into level l: each fine point
 // interpolates from the coarse points around it with weights from its own stencil.
 template <int NC>
-void Multigrid<NC>::build_prolongation(int l) {
+void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* rebuild) {
   const Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const size_t nc = C.padded();
@@ -258,49 +353,67 @@ void Multigrid<NC>::build_prolongation(int l) {
   };
 
   Prolongation& P = prolong_[l];
-  for (auto* v : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11}) v->assign(nc, 0.0f);
+  if (!rebuild)
+    for (auto* v : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
+      v->assign(nc, 0.0f);
   const auto alive_c = [&](int I, int J) { return float(C.alive[C.at(I, J)]); };
-  // Edge points first: the cell centres interpolate from them.
-  for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) {
-      const size_t kc = C.at(I, J);
-      if (2 * I + 1 < F.w) {
-        const size_t k = F.at(2 * I + 1, 2 * J);
-        if (F.alive[k]) {
-          const Stencil s = stencil_at(F, k);
-          const Collapse west = collapse(s.w, s.nw + s.sw, alive_c(I, J), s.d);
-          const Collapse east = collapse(s.e, s.ne + s.se, alive_c(I + 1, J), s.d);
-          const float den = s.d - s.n - s.s - west.self - east.self;
-          P.x0[kc] = ratio(west.weight, den);
-          P.x1[kc] = ratio(east.weight, den);
-        }
-      }
-      if (2 * J + 1 < F.h) {
-        const size_t k = F.at(2 * I, 2 * J + 1);
-        if (F.alive[k]) {
-          const Stencil s = stencil_at(F, k);
-          const Collapse north = collapse(s.n, s.nw + s.ne, alive_c(I, J), s.d);
-          const Collapse south = collapse(s.s, s.sw + s.se, alive_c(I, J + 1), s.d);
-          const float den = s.d - s.w - s.e - north.self - south.self;
-          P.y0[kc] = ratio(north.weight, den);
-          P.y1[kc] = ratio(south.weight, den);
-        }
+  // Edge points first: the cell centres interpolate from them. Every weight of a rebuilt cell is
+  // written (0 where its fine point is fixed or outside), so no earlier value stays.
+  const auto cells = [&](const auto& body) {
+    for_rows(C.h, C.w * 8, [&](int J0, int J1) {
+      for (int J = J0; J < J1; ++J)
+        for (int I = 0; I < C.w; ++I)
+          if (!rebuild || (*rebuild)[C.at(I, J)]) body(I, J, C.at(I, J));
+    });
+  };
+  cells([&](int I, int J, size_t kc) {
+    float x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    if (2 * I + 1 < F.w) {
+      const size_t k = F.at(2 * I + 1, 2 * J);
+      if (F.alive[k]) {
+        const Stencil s = stencil_at(F, k);
+        const Collapse west = collapse(s.w, s.nw + s.sw, alive_c(I, J), s.d);
+        const Collapse east = collapse(s.e, s.ne + s.se, alive_c(I + 1, J), s.d);
+        const float den = s.d - s.n - s.s - west.self - east.self;
+        x0 = ratio(west.weight, den);
+        x1 = ratio(east.weight, den);
       }
     }
+    if (2 * J + 1 < F.h) {
+      const size_t k = F.at(2 * I, 2 * J + 1);
+      if (F.alive[k]) {
+        const Stencil s = stencil_at(F, k);
+        const Collapse north = collapse(s.n, s.nw + s.ne, alive_c(I, J), s.d);
+        const Collapse south = collapse(s.s, s.sw + s.se, alive_c(I, J + 1), s.d);
+        const float den = s.d - s.w - s.e - north.self - south.self;
+        y0 = ratio(north.weight, den);
+        y1 = ratio(south.weight, den);
+      }
+    }
+    P.x0[kc] = x0;
+    P.x1[kc] = x1;
+    P.y0[kc] = y0;
+    P.y1[kc] = y1;
+  });
   const int cs = C.stride;
-  for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) {
-      if (2 * I + 1 >= F.w || 2 * J + 1 >= F.h) continue;
+  cells([&](int I, int J, size_t kc) {
+    float c00 = 0, c10 = 0, c01 = 0, c11 = 0;
+    if (2 * I + 1 < F.w && 2 * J + 1 < F.h) {
       const size_t k = F.at(2 * I + 1, 2 * J + 1);
-      if (!F.alive[k]) continue;
-      const size_t kc = C.at(I, J);
-      const Stencil s = stencil_at(F, k);
-      const float inv = s.d > 1e-6f ? 1.0f / s.d : 0.0f;
-      P.c00[kc] = (s.w * P.y0[kc] + s.n * P.x0[kc] + s.nw * alive_c(I, J)) * inv;
-      P.c10[kc] = (s.e * P.y0[kc + 1] + s.n * P.x1[kc] + s.ne * alive_c(I + 1, J)) * inv;
-      P.c01[kc] = (s.w * P.y1[kc] + s.s * P.x0[kc + cs] + s.sw * alive_c(I, J + 1)) * inv;
-      P.c11[kc] = (s.e * P.y1[kc + 1] + s.s * P.x1[kc + cs] + s.se * alive_c(I + 1, J + 1)) * inv;
+      if (F.alive[k]) {
+        const Stencil s = stencil_at(F, k);
+        const float inv = s.d > 1e-6f ? 1.0f / s.d : 0.0f;
+        c00 = (s.w * P.y0[kc] + s.n * P.x0[kc] + s.nw * alive_c(I, J)) * inv;
+        c10 = (s.e * P.y0[kc + 1] + s.n * P.x1[kc] + s.ne * alive_c(I + 1, J)) * inv;
+        c01 = (s.w * P.y1[kc] + s.s * P.x0[kc + cs] + s.sw * alive_c(I, J + 1)) * inv;
+        c11 = (s.e * P.y1[kc + 1] + s.s * P.x1[kc + cs] + s.se * alive_c(I + 1, J + 1)) * inv;
+      }
     }
+    P.c00[kc] = c00;
+    P.c10[kc] = c10;
+    P.c01[kc] = c01;
+    P.c11[kc] = c11;
+  });
 }
 
 // Coarse points of the finest level whose Galerkin stencil is the plain one: every fine point
@@ -334,15 +447,26 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
 // coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1).
 template <int NC>
-void Multigrid<NC>::galerkin_product(int l) {
+std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
+    int l, const std::vector<std::uint8_t>* rebuild) {
   const Level& F = levels_[l];
   Level& C = levels_[l + 1];
   const size_t nc = C.padded();
   const int cs = C.stride;
   const Prolongation& P = prolong_[l];
-  C.diag.assign(nc, 0.0f);
-  C.inv_diag.assign(nc, 0.0f);
-  for (auto* v : {&C.ae, &C.as, &C.ase, &C.asw}) v->assign(nc, 0.0f);
+  std::vector<std::uint8_t> changed;
+  if (rebuild)
+    changed.assign(nc, 0);
+  else
+    for (auto* v : {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw}) v->assign(nc, 0.0f);
+  const auto wanted = [&](size_t kc) { return !rebuild || (*rebuild)[kc]; };
+  // Stores a coarse point's stencil (rebuilt points: noting which changed).
+  const auto store = [&](size_t kc, const float(&v)[6]) {
+    std::vector<float>* arrays[6] = {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw};
+    bool c = false;
+    for (int m = 0; m < 6; ++m) c |= update((*arrays[m])[kc], v[m]);
+    if (rebuild) changed[kc] = c;
+  };
   const auto p_row = [&](int x, int y, float w[4]) {
     w[0] = w[1] = w[2] = w[3] = 0.0f;
     if (x < 0 || y < 0 || x >= F.w || y >= F.h || !F.alive[F.at(x, y)]) return;
@@ -362,49 +486,68 @@ void Multigrid<NC>::galerkin_product(int l) {
       w[3] = P.c11[kc];
     }
   };
-  // On the finest level, plain coarse points (plain_points) are computed once, at `model`.
+  // On the finest level, plain coarse points (plain_points) are computed once, at `model` (the
+  // first one that is wanted).
   std::vector<std::uint8_t> plain;
   size_t model = 0;
   if (!F.nine_point) {
     plain = plain_points(F, C);
-    const auto it = std::find(plain.begin(), plain.end(), 1);
-    if (it == plain.end())
+    size_t k = 0;
+    while (k < nc && !(plain[k] && wanted(k))) ++k;
+    if (k == nc)
       plain.clear();
     else
-      model = size_t(it - plain.begin());
+      model = k;
   }
   const auto computed = [&](int I, int J) {
     const size_t kc = C.at(I, J);
-    return plain.empty() || !plain[kc] || kc == model;
+    return wanted(kc) && (plain.empty() || !plain[kc] || kc == model);
   };
-  // Whether a computed coarse point reads the A P row of fine point (x, y): those within 1.
-  const auto needed = [&](int x, int y) {
-    if (plain.empty()) return true;
-    for (int J = (y - 1 + 1) >> 1; J <= (y + 1) >> 1; ++J)
-      for (int I = (x - 1 + 1) >> 1; I <= (x + 1) >> 1; ++I)
-        if (I < C.w && J < C.h && std::abs(2 * I - x) <= 1 && std::abs(2 * J - y) <= 1 &&
-            computed(I, J))
-          return true;
-    return false;
-  };
+  // Every coarse point computed: every row of P and A P is needed.
+  const bool everything = !rebuild && plain.empty();
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
-    // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last.
+    // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last, computed only
+    // where a computed coarse point reads them: A P rows within 1 of its fine point (need 2), P
+    // rows within 2 (need >= 1). Only those are written, and read.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
     const int pw_stride = F.w + 2;
-    std::vector<float> pw(size_t(y_count + 2) * pw_stride * 4);
+    std::vector<std::uint8_t> need(size_t(y_count + 2) * pw_stride, everything ? 2 : 0);
+    const auto need_at = [&](int x, int y) -> std::uint8_t& {
+      return need[size_t(y - y_first + 1) * pw_stride + (x + 1)];
+    };
+    if (!everything) {
+      bool any = false;
+      for (int J = J0; J < J1; ++J)
+        for (int I = 0; I < C.w; ++I) {
+          if (!computed(I, J)) continue;
+          any = true;
+          if (!C.alive[C.at(I, J)]) continue;
+          for (int y = std::max(2 * J - 2, y_first - 1); y <= std::min(2 * J + 2, F.h); ++y)
+            for (int x = std::max(2 * I - 2, -1); x <= std::min(2 * I + 2, F.w); ++x) {
+              std::uint8_t& n = need_at(x, y);
+              n = std::max<std::uint8_t>(
+                  n, std::abs(x - 2 * I) <= 1 && std::abs(y - 2 * J) <= 1 ? 2 : 1);
+            }
+        }
+      if (!any) return;
+    }
+    const std::unique_ptr<float[]> pw(new float[size_t(y_count + 2) * pw_stride * 4]);
     const auto pw_at = [&](int x, int y) {
       return &pw[(size_t(y - y_first + 1) * pw_stride + (x + 1)) * 4];
     };
     for (int y = y_first - 1; y <= y_first + y_count; ++y)
-      for (int x = -1; x <= F.w; ++x) p_row(x, y, pw_at(x, y));
-    std::vector<float> ap(size_t(y_count) * F.w * 9, 0.0f);
+      for (int x = -1; x <= F.w; ++x)
+        if (need_at(x, y)) p_row(x, y, pw_at(x, y));
+    const std::unique_ptr<float[]> ap(new float[size_t(y_count) * F.w * 9]);
     for (int yy = 0; yy < y_count; ++yy) {
       const int y = y_first + yy;
       if (y < 0 || y >= F.h) continue;
       for (int x = 0; x < F.w; ++x) {
         const size_t k = F.at(x, y);
-        if (!F.alive[k] || !needed(x, y)) continue;
+        if (need_at(x, y) != 2) continue;
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
+        std::fill_n(out, 9, 0.0f);
+        if (!F.alive[k]) continue;
         const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
         const Stencil st = stencil_at(F, k);
         const float coeff[9] = {-st.nw, -st.n, -st.ne, -st.w, st.d, -st.e, -st.sw, -st.s, -st.se};
@@ -426,7 +569,11 @@ void Multigrid<NC>::galerkin_product(int l) {
     for (int J = J0; J < J1; ++J)
       for (int I = 0; I < C.w; ++I) {
         const size_t kc = C.at(I, J);
-        if (!C.alive[kc] || !computed(I, J)) continue;
+        if (!computed(I, J)) continue;
+        if (!C.alive[kc]) {
+          if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
+          continue;
+        }
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
         const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
                                     {P.x1[kc - 1], 1.0f, P.x0[kc]},
@@ -446,26 +593,19 @@ void Multigrid<NC>::galerkin_product(int l) {
               acc[m] += double(wk) * row[sy * 3 + sx];
             }
           }
-        C.diag[kc] = float(acc[0]);
-        C.inv_diag[kc] = acc[0] > 0 ? float(1.0 / acc[0]) : 0.0f;
-        C.ae[kc] = float(-acc[1]);
-        C.as[kc] = float(-acc[2]);
-        C.ase[kc] = float(-acc[3]);
-        C.asw[kc] = float(-acc[4]);
+        store(kc, {float(acc[0]), acc[0] > 0 ? float(1.0 / acc[0]) : 0.0f, float(-acc[1]),
+                   float(-acc[2]), float(-acc[3]), float(-acc[4])});
       }
   });
-  if (plain.empty()) return;
+  if (plain.empty()) return changed;
+  const float stencil[6] = {C.diag[model], C.inv_diag[model], C.ae[model],
+                            C.as[model],   C.ase[model],      C.asw[model]};
   for (int J = 0; J < C.h; ++J)
     for (int I = 0; I < C.w; ++I) {
       const size_t kc = C.at(I, J);
-      if (!plain[kc] || kc == model) continue;
-      C.diag[kc] = C.diag[model];
-      C.inv_diag[kc] = C.inv_diag[model];
-      C.ae[kc] = C.ae[model];
-      C.as[kc] = C.as[model];
-      C.ase[kc] = C.ase[model];
-      C.asw[kc] = C.asw[model];
+      if (plain[kc] && kc != model && wanted(kc)) store(kc, stencil);
     }
+  return changed;
 }
 
 // Dense LDLT of the coarsest level's free points.
@@ -923,13 +1063,22 @@ void Multigrid<NC>::setup() {
     h = (h + 1) / 2;
     ++count;
   }
+  // The workspace's operators are those of the last problem it was set up for: for the same size,
+  // only what can have changed is rebuilt (build_coarse), which is the same to the bit.
+  const bool reuse = ws_.width == p.width && ws_.height == p.height && int(levels_.size()) == count;
+  ws_.width = ws_.height = 0;  // until this setup is complete
   levels_.resize(count);
   prolong_.resize(count - 1);
-  build_finest(fixed_);
-  for (int l = 0; l + 1 < count; ++l) build_coarse(l);
+  std::vector<std::uint8_t> changed = build_finest(fixed_, !reuse);
+  for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, reuse ? &changed : nullptr);
   build_coarsest();
+  // The cycles' arrays: every interior value is written before it is read, and the ghost points
+  // stay 0, so arrays of the same layout are kept as they are.
   for (Level& L : levels_)
-    for (auto* v : {&L.e, &L.rhs, &L.res}) v->assign(L.padded() * NC, 0.0f);
+    for (auto* v : {&L.e, &L.rhs, &L.res})
+      if (!reuse || v->size() != L.padded() * NC) v->assign(L.padded() * NC, 0.0f);
+  ws_.width = p.width;
+  ws_.height = p.height;
 }
 
 // r = b - A u on the free pixels of the finest level, in double precision, where b = -g plus the
@@ -1038,6 +1187,7 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
       levels_[l].res = levels_[l].rhs;
       restrict_residual(l);
     }
+    std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
       std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);
