@@ -60,7 +60,7 @@ struct Level {
   std::vector<std::uint8_t> alive;  // 1 on free points
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
-  std::vector<float> e, rhs, res;  // channel planes, padded
+  std::vector<float> e, rhs;  // channel planes, padded
 
   size_t padded() const { return size_t(stride) * size_t(h + 2); }
   size_t at(int x, int y) const { return size_t(y + 1) * stride + size_t(x + 1); }
@@ -74,7 +74,7 @@ struct Prolongation {
   std::vector<float> x0, x1, y0, y1, c00, c10, c01, c11;
 };
 
-// The arrays of a solve that outlive it: levels, prolongations, the fixed mask and the residual.
+// The arrays of a solve that outlive it: levels, prolongations and the fixed mask.
 // Each thread keeps one (see solve_multigrid) and solves reuse its allocations: at 1024^2 a
 // fresh set costs about 70 MB of page faults per frame, a fifth of the solve. They also keep
 // the operators, so that the next solve of the same size rebuilds only the coarse points whose
@@ -83,7 +83,6 @@ struct Workspace {
   std::vector<Level> levels;
   std::vector<Prolongation> prolong;  // prolong[l]: from level l+1 into level l
   std::vector<std::uint8_t> fixed;
-  std::vector<float> residual;
   std::vector<float> previous;
   // The size of the problem whose operators `levels` and `prolong` hold; 0 when they hold none
   // (or a setup did not finish).
@@ -140,7 +139,6 @@ class Multigrid {
         levels_(ws.levels),
         prolong_(ws.prolong),
         fixed_(ws.fixed),
-        r_(ws.residual),
         previous_(ws.previous) {}
 
   Solution run(const std::vector<float>* initial_guess);
@@ -154,7 +152,6 @@ class Multigrid {
   std::vector<Prolongation>& prolong_;  // prolong_[l]: from level l+1 into level l
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
-  std::vector<float>& r_;               // the residual of the initial guess, padded
   std::vector<float>& previous_;        // the correction before a cycle (SolverOptions::max_error)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
@@ -173,24 +170,25 @@ class Multigrid {
   void build_coarsest();
   void smooth(int l, int sweeps, bool reverse);
   void relax_row(Level& L, int y, int x_parity, float* buf);
-  void residual(int l);  // levels_[l].res = rhs - A e
+  void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
+                    float* const out[NC], float* norms) const;
   void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
-                   std::vector<float>& out, std::vector<double>* row_norms = nullptr);
-  std::array<double, NC> residual_norms(int l);
-  void restrict_residual(int l);  // levels_[l].res -> levels_[l+1].rhs
-  void prolongate_add(int l);     // levels_[l].e += P levels_[l+1].e
+                   std::vector<float>* out, std::vector<double>* row_norms = nullptr) const;
+  std::array<double, NC> residual_norms(int l) const;
+  void restrict_to_coarse(int l, const std::vector<float>* source);
+  void prolongate_add(int l);  // levels_[l].e += P levels_[l+1].e
   void solve_coarsest();
   void vcycle(int l);
   double relative(const std::array<double, NC>& norms) const;
-  double conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
-                            SolveStats& st);
+  double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
   template <class T>
   std::array<double, NC> residual_double(const std::vector<T>& u, std::vector<float>& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
-  double solve_correction(const std::vector<float>& r0, double tolerance, SolveStats& st);
+  double solve_correction(double tolerance, SolveStats& st);
   double change_since(std::vector<float>& before) const;
-  void observe(const std::vector<float>& residual_padded, const SolveStats& st) const;
+  // Hands SolverOptions::observer the residual: `residual_padded`, or the finest level's.
+  void observe(const std::vector<float>* residual_padded, const SolveStats& st) const;
   std::array<double, NC> dot(const std::vector<float>& a, const std::vector<float>& b) const;
 };
 
@@ -782,51 +780,64 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse) {
   }
 }
 
-// out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded.
+// Row y of out = b - A e on level l (b == nullptr: out = -A e), every channel: out[c] points at
+// the row's first point. With `norms`, the squared 2-norm of each channel's row (in float).
+template <int NC>
+void Multigrid<NC>::residual_row(int l, int y, const std::vector<float>* b_planes,
+                                 const std::vector<float>& e_planes, float* const out[NC],
+                                 float* norms) const {
+  const Level& L = levels_[l];
+  const size_t n = L.padded(), row = L.at(0, y);
+  const int w = L.w;
+  const RowCouplings a(L, row);
+  const float* __restrict d = &L.diag[row];
+  for (int c = 0; c < NC; ++c) {
+    const float* __restrict e = &e_planes[c * n + row];
+    float* __restrict r = out[c];
+    a.neighbour_sum(e, r, w);
+    if (b_planes) {
+      const float* __restrict b = &(*b_planes)[c * n + row];
+      for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
+    } else {
+      for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
+    }
+    if (norms) {  // while the row is in cache
+      float sum = 0;
+#pragma omp simd reduction(+ : sum)
+      for (int x = 0; x < w; ++x) sum += r[x] * r[x];
+      norms[c] = sum;
+    }
+  }
+}
+
+// out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded. Without
+// `out` only the row norms are computed, a row at a time.
 template <int NC>
 void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
-                                const std::vector<float>& e_planes, std::vector<float>& out,
-                                std::vector<double>* row_norms) {
-  Level& L = levels_[l];
+                                const std::vector<float>& e_planes, std::vector<float>* out,
+                                std::vector<double>* row_norms) const {
+  const Level& L = levels_[l];
   const size_t n = L.padded();
-  const int w = L.w;
-  for_rows(L.h, w * NC, [&](int y0, int y1) {
+  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+    std::vector<float> buffer(out ? 0 : size_t(L.w) * NC);
     for (int y = y0; y < y1; ++y) {
-      const size_t row = L.at(0, y);
-      const RowCouplings a(L, row);
-      const float* __restrict d = &L.diag[row];
-      for (int c = 0; c < NC; ++c) {
-        const float* __restrict e = &e_planes[c * n + row];
-        float* __restrict r = &out[c * n + row];
-        a.neighbour_sum(e, r, w);
-        if (b_planes) {
-          const float* __restrict b = &(*b_planes)[c * n + row];
-          for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
-        } else {
-          for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
-        }
-        if (row_norms) {  // while the row is in cache
-          float sum = 0;
-#pragma omp simd reduction(+ : sum)
-          for (int x = 0; x < w; ++x) sum += r[x] * r[x];
-          (*row_norms)[size_t(y) * NC + c] = sum;
-        }
-      }
+      float* rows[NC];
+      for (int c = 0; c < NC; ++c)
+        rows[c] = out ? &(*out)[c * n + L.at(0, y)] : &buffer[size_t(c) * L.w];
+      float norms[NC];
+      residual_row(l, y, b_planes, e_planes, rows, row_norms ? norms : nullptr);
+      if (row_norms)
+        for (int c = 0; c < NC; ++c) (*row_norms)[size_t(y) * NC + c] = norms[c];
     }
   });
 }
 
-template <int NC>
-void Multigrid<NC>::residual(int l) {
-  residual_of(l, &levels_[l].rhs, levels_[l].e, levels_[l].res);
-}
-
 // 2-norms of the residual per channel; rows are summed in order, whatever the thread count.
 template <int NC>
-std::array<double, NC> Multigrid<NC>::residual_norms(int l) {
-  Level& L = levels_[l];
+std::array<double, NC> Multigrid<NC>::residual_norms(int l) const {
+  const Level& L = levels_[l];
   std::vector<double> rows(size_t(L.h) * NC, 0.0);
-  residual_of(l, &L.rhs, L.e, L.res, &rows);
+  residual_of(l, &L.rhs, L.e, nullptr, &rows);
   std::array<double, NC> norms{};
   for (int y = 0; y < L.h; ++y)
     for (int c = 0; c < NC; ++c) norms[c] += rows[size_t(y) * NC + c];
@@ -834,26 +845,57 @@ std::array<double, NC> Multigrid<NC>::residual_norms(int l) {
   return norms;
 }
 
+// levels_[l+1].rhs = P^T r on the fine points of level l, r being `source` (channel planes,
+// padded) or, without it, the residual rhs - A e of level l. That residual is computed for a band
+// of rows at a time (the rows its coarse rows read, the band's edge rows twice) and never stored
+// whole: one pass over the fine level instead of a write and a read of a residual array.
 template <int NC>
-void Multigrid<NC>::restrict_residual(int l) {
+void Multigrid<NC>::restrict_to_coarse(int l, const std::vector<float>* source) {
   const Level& F = levels_[l];
   Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
   const size_t nf = F.padded(), nc = C.padded();
   const int fs = F.stride, cs = C.stride;
-  for_rows(C.h, C.w * NC * 4, [&](int J0, int J1) {
+  for_rows(C.h, C.w * 2, [&](int J0, int J1) {
+    // Fine rows y_first .. y_first + rows - 1 are read; the band holds them (ghosts 0).
+    const int y_first = 2 * J0 - 1, rows = 2 * (J1 - J0) + 1;
+    std::unique_ptr<float[]> band;
+    const float* r[NC];
+    size_t offset = 0;  // of the band's first point in the level's padded layout
+    if (source) {
+      for (int c = 0; c < NC; ++c) r[c] = &(*source)[c * nf];
+    } else {
+      const size_t band_size = size_t(rows) * fs;
+      band.reset(new float[band_size * NC]);
+      offset = F.at(-1, y_first);
+      for (int yy = 0; yy < rows; ++yy) {
+        const int y = y_first + yy;
+        float* out[NC];
+        for (int c = 0; c < NC; ++c) {
+          float* row = &band[c * band_size + size_t(yy) * fs];
+          if (y < 0 || y >= F.h) {
+            std::fill_n(row, fs, 0.0f);
+          } else {
+            row[0] = row[fs - 1] = 0.0f;
+          }
+          out[c] = row + 1;
+        }
+        if (y >= 0 && y < F.h) residual_row(l, y, &F.rhs, F.e, out, nullptr);
+      }
+      for (int c = 0; c < NC; ++c) r[c] = &band[c * band_size];
+    }
     for (int J = J0; J < J1; ++J)
       for (int I = 0; I < C.w; ++I) {
         const size_t kc = C.at(I, J);
-        const size_t k = F.at(2 * I, 2 * J);  // neighbours may be ghosts: residual 0 there
+        const size_t k = F.at(2 * I, 2 * J) - offset;  // neighbours may be ghosts: 0 there
         for (int c = 0; c < NC; ++c) {
-          const float* r = &F.res[c * nf];
+          const float* rc = r[c];
           float v = 0.0f;
           if (C.alive[kc])
-            v = r[k] + P.x0[kc] * r[k + 1] + P.x1[kc - 1] * r[k - 1] + P.y0[kc] * r[k + fs] +
-                P.y1[kc - cs] * r[k - fs] + P.c00[kc] * r[k + fs + 1] +
-                P.c10[kc - 1] * r[k + fs - 1] + P.c01[kc - cs] * r[k - fs + 1] +
-                P.c11[kc - cs - 1] * r[k - fs - 1];
+            v = rc[k] + P.x0[kc] * rc[k + 1] + P.x1[kc - 1] * rc[k - 1] + P.y0[kc] * rc[k + fs] +
+                P.y1[kc - cs] * rc[k - fs] + P.c00[kc] * rc[k + fs + 1] +
+                P.c10[kc - 1] * rc[k + fs - 1] + P.c01[kc - cs] * rc[k - fs + 1] +
+                P.c11[kc - cs - 1] * rc[k - fs - 1];
           C.rhs[c * nc + kc] = v;
         }
       }
@@ -908,8 +950,7 @@ void Multigrid<NC>::vcycle(int l) {
   // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
   // and can precondition conjugate gradients.
   smooth(l, options_.pre_smooth, false);
-  residual(l);
-  restrict_residual(l);
+  restrict_to_coarse(l, nullptr);
   Level& C = levels_[l + 1];
   std::fill(C.e.begin(), C.e.end(), 0.0f);
   vcycle(l + 1);
@@ -946,12 +987,12 @@ std::array<double, NC> Multigrid<NC>::dot(const std::vector<float>& a,
 // nearly seal off, say); CG removes those few outliers in a handful of iterations, so the solver
 // keeps its rate where plain V-cycles would stall. Starts from the FMG answer in levels_[0].e.
 template <int NC>
-double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double rel, double tolerance,
-                                         SolveStats& st) {
+double Multigrid<NC>::conjugate_gradient(double rel, double tolerance, SolveStats& st) {
   Level& L = levels_[0];
   const size_t n = L.padded();
+  const std::vector<float> r0 = L.rhs;  // the cycles below take the finest right-hand side
   std::vector<float> x = L.e, r(r0.size()), p(r0.size(), 0.0f), q(r0.size());
-  residual_of(0, &r0, x, r);
+  residual_of(0, &r0, x, &r);
   std::array<double, NC> rz_old{};
   double last_true = rel;
   // With SolverOptions::max_error. CG's steps are not a fixed-point iteration: one step may
@@ -974,7 +1015,7 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
       for (size_t i = 0; i < n; ++i) pc[i] = z[i] + beta * pc[i];
     }
     rz_old = rz;
-    residual_of(0, nullptr, p, q);  // q = -A p
+    residual_of(0, nullptr, p, &q);  // q = -A p
     const std::array<double, NC> pq = dot(p, q);
     float change = 0;
     for (int c = 0; c < NC; ++c) {
@@ -1008,12 +1049,12 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
       }
       st.error_estimates.push_back(estimate);
     }
-    observe(r, st);
+    observe(&r, st);
     // The recursive residual drifts from the true one in float32: when it claims convergence
     // (or has not improved for a while), confirm with the true residual and carry on from it,
     // restarting the directions, unless float32 precision is exhausted.
     if (done() || st.cycles % 16 == 0) {
-      residual_of(0, &r0, x, r);
+      residual_of(0, &r0, x, &r);
       std::array<double, NC> true_norms = dot(r, r);
       for (double& v : true_norms) v = std::sqrt(v);
       rel = relative(true_norms);
@@ -1029,9 +1070,15 @@ double Multigrid<NC>::conjugate_gradient(const std::vector<float>& r0, double re
 }
 
 template <int NC>
-void Multigrid<NC>::observe(const std::vector<float>& padded, const SolveStats& st) const {
+void Multigrid<NC>::observe(const std::vector<float>* residual_padded, const SolveStats& st) const {
   if (!options_.observer) return;
   const Level& F = levels_[0];
+  std::vector<float> own;
+  if (!residual_padded) {
+    own.assign(F.padded() * NC, 0.0f);
+    residual_of(0, &F.rhs, F.e, &own);
+  }
+  const std::vector<float>& padded = residual_padded ? *residual_padded : own;
   const size_t n = size_t(F.w) * F.h, nf = F.padded();
   std::vector<float> planes(n * NC);
   for (int c = 0; c < NC; ++c)
@@ -1075,7 +1122,7 @@ void Multigrid<NC>::setup() {
   // The cycles' arrays: every interior value is written before it is read, and the ghost points
   // stay 0, so arrays of the same layout are kept as they are.
   for (Level& L : levels_)
-    for (auto* v : {&L.e, &L.rhs, &L.res})
+    for (auto* v : {&L.e, &L.rhs})
       if (!reuse || v->size() != L.padded() * NC) v->assign(L.padded() * NC, 0.0f);
   ws_.width = p.width;
   ws_.height = p.height;
@@ -1093,13 +1140,16 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
   const Problem& p = problem_;
   const Level& F = levels_[0];
   const size_t np = p.pixel_count(), nf = F.padded();
-  r_padded.assign(nf * NC, 0.0f);
+  r_padded.resize(nf * NC);  // ghost points stay 0; every interior point is written below
   std::vector<double> rows(size_t(p.height) * NC * 2, 0.0);
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < p.width; ++x) {
         const size_t i = p.index(x, y), k = F.at(x, y);
-        if (fixed_[i]) continue;
+        if (fixed_[i]) {
+          for (int c = 0; c < NC; ++c) r_padded[c * nf + k] = 0.0f;
+          continue;
+        }
         const bool open[4] = {
             (p.links[i] & kOpenEast) != 0, x > 0 && (p.links[i - 1] & kOpenEast) != 0,
             (p.links[i] & kOpenSouth) != 0, y > 0 && (p.links[i - p.width] & kOpenSouth) != 0};
@@ -1169,12 +1219,10 @@ double Multigrid<NC>::change_since(std::vector<float>& before) const {
 // the stopping rule holds (the residual relative to b_norm_ below `tolerance`, or with
 // SolverOptions::max_error the estimated error below it) or float32 precision is exhausted.
 template <int NC>
-double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tolerance,
-                                       SolveStats& st) {
+double Multigrid<NC>::solve_correction(double tolerance, SolveStats& st) {
   const int count = int(levels_.size());
   const bool by_error = options_.max_error > 0;
   Level& F = levels_[0];
-  F.rhs = r0;
   std::fill(F.e.begin(), F.e.end(), 0.0f);
   double rel = relative(residual_norms(0));
   double estimate = rel == 0 ? 0.0 : std::numeric_limits<double>::infinity();
@@ -1183,10 +1231,7 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
   if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
-    for (int l = 0; l + 1 < count; ++l) {
-      levels_[l].res = levels_[l].rhs;
-      restrict_residual(l);
-    }
+    for (int l = 0; l + 1 < count; ++l) restrict_to_coarse(l, &levels_[l].rhs);
     std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
@@ -1203,7 +1248,7 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
       change_since(previous_);
       st.error_estimates.push_back(estimate);
     }
-    observe(levels_[0].res, st);
+    observe(nullptr, st);
   }
   double last_change = 0;  // of the previous V-cycle, 0 before the first
   while (!done() && st.cycles < options_.max_cycles) {
@@ -1223,11 +1268,11 @@ double Multigrid<NC>::solve_correction(const std::vector<float>& r0, double tole
       last_change = change;
       st.error_estimates.push_back(estimate);
     }
-    observe(levels_[0].res, st);
+    observe(nullptr, st);
     // A cycle that gains less than 3x meets a mode the coarse grids cannot represent: from
     // here conjugate gradients, with the cycle as preconditioner, take over.
     if (options_.krylov && rel > 0.3 * prev && !done())
-      return conjugate_gradient(r0, rel, tolerance, st);
+      return conjugate_gradient(rel, tolerance, st);
     if (rel > 0.9 * prev && rel < 1e-4) break;  // float32 floor
   }
   if (by_error) st.converged = done();
@@ -1273,7 +1318,8 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
   };
   std::vector<float> u32;
   std::vector<double> u64;
-  std::vector<float>& r = r_;
+  // The residual of the initial guess is the finest level's right-hand side.
+  std::vector<float>& r = levels_[0].rhs;
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
   b_norm_.fill(0.0);
   double rel;
@@ -1291,7 +1337,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
   if (!refine) {
     st.converged = rel == 0;
     if (by_error ? rel > 0 : rel > options_.tolerance) {
-      rel = solve_correction(r, options_.tolerance, st);
+      rel = solve_correction(options_.tolerance, st);
       add_correction(u32);
     }
   } else {
@@ -1299,7 +1345,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
     // tighter tolerance the residual of the double-precision answer is solved for again
     // (iterative refinement); each round gains about five digits.
     for (int round = 0; round < 3 && rel > options_.tolerance; ++round) {
-      solve_correction(r, options_.tolerance, st);
+      solve_correction(options_.tolerance, st);
       add_correction(u64);
       const double prev = rel;
       rel = relative(residual_double(u64, r));
