@@ -9,6 +9,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -701,6 +705,44 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict) 
     e[c] = &L.e[c * n + row];
     b[c] = &L.rhs[c * n + row];
   }
+#if defined(__AVX512F__)
+  // Sixteen points at a time, both colours computed and only this parity's stored (masked), with
+  // the scalar loops' operations in their order (the compiler contracts them to the same fused
+  // multiply-adds): the same bits, four to eight times fewer instructions.
+  const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
+  for (int x = 0; x < L.w; x += 16) {
+    const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
+    const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+    const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+    if (!a.nine_point) {
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        _mm512_mask_storeu_ps(e[c] + x, in & parity,
+                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      }
+      continue;
+    }
+    const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
+    for (int c = 0; c < NC; ++c) {
+      const float* ec = e[c];
+      __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+      t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+      t = _mm512_fmadd_ps(ps, load(ec + s), t);
+      t = _mm512_fmadd_ps(pn, load(ec - s), t);
+      __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+      u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+      u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+      u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+      t = _mm512_add_ps(t, u);
+      _mm512_mask_storeu_ps(e[c] + x, in & parity, _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+    }
+  }
+  return;
+#endif
   if (!a.nine_point) {
     for (int x = x_parity; x < L.w; x += 2) {
       const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
