@@ -173,7 +173,7 @@ class Multigrid {
   std::vector<std::uint8_t> galerkin_product(int l, const std::vector<std::uint8_t>* rebuild);
   void build_coarsest();
   void smooth(int l, int sweeps, bool reverse);
-  void relax_row(Level& L, int y, int x_parity, float* buf);
+  void relax_row(Level& L, int y, int x_parity);
   void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
                     float* const out[NC], float* norms) const;
   void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
@@ -694,7 +694,7 @@ struct RowCouplings {
 // equation asks given its neighbours. Only the points of that parity are computed, every channel
 // with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
 template <int NC>
-void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict) {
+void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   const size_t n = L.padded(), row = L.at(0, y);
   const RowCouplings a(L, row);
   const int s = a.stride;
@@ -769,57 +769,54 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity, float* __restrict) 
 // Gauss-Seidel in an order-independent colouring: red-black on the 5-point finest level, four
 // colours (x parity, y parity) on the 9-point levels. Each sweep has two stages, A and B:
 // red then black, or even rows (colours 0, 1) then odd rows (colours 2, 3); reversed for
-// post-smoothing so that the cycle is symmetric. Stage B of row y-1 only needs stage A of rows
-// y-2..y, so one pass over memory does both: A(y), B(y-1), A(y+1), B(y), ... Rows are split in
-// chunks run in parallel; the B stage of each chunk's first and last row waits for a second
-// phase, after every chunk's A stages are done. The result is exactly that of the plain
-// colour-by-colour order, whatever the chunks.
+// post-smoothing so that the cycle is symmetric. Stage k of the sequence A1 B1 A2 B2 ... at row
+// y needs stage k-1 at rows y-1..y+1 only (and nothing else reads what it overwrites), so one
+// pass over memory does every stage of every sweep, a wave down the rows: stage 0 at row t,
+// stage 1 at row t-1, stage 2 at row t-2, ... while those rows are in cache. Rows are split in
+// chunks run in parallel; a chunk does stage k on its rows but the k nearest each neighbour
+// chunk, which a second phase does around each chunk boundary, stage by stage. The result is
+// exactly that of the plain colour-by-colour order, whatever the chunks.
 template <int NC>
 void Multigrid<NC>::smooth(int l, int sweeps, bool reverse) {
   Level& L = levels_[l];
-  const auto stage = [&](int y, bool first, float* buf) {
+  const int stages = 2 * sweeps;
+  const auto stage = [&](int y, int k) {
+    const bool first = k % 2 == 0;
     if (!L.nine_point) {
       const int colour = first != reverse ? 0 : 1;
-      relax_row(L, y, (colour + y) & 1, buf);
+      relax_row(L, y, (colour + y) & 1);
       return;
     }
     const bool first_rows = reverse ? (y & 1) : !(y & 1);
     if (first_rows != first) return;
-    relax_row(L, y, reverse ? 1 : 0, buf);
-    relax_row(L, y, reverse ? 0 : 1, buf);
+    relax_row(L, y, reverse ? 1 : 0);
+    relax_row(L, y, reverse ? 0 : 1);
   };
+  if (stages == 0) return;
+  // Chunks of at least 8 rows per stage, so that the second phase stays a small part.
   constexpr int kPointsPerChunk = 16384;
-  const int chunks = std::clamp(L.w * L.h * NC / kPointsPerChunk, 1, std::max(1, L.h / 4));
-  const auto chunk_rows = [&](int k) {
-    return std::pair<int, int>{int(int64_t(L.h) * k / chunks),
-                               int(int64_t(L.h) * (k + 1) / chunks)};
+  const int chunks =
+      std::clamp(L.w * L.h * NC / kPointsPerChunk, 1, std::max(1, L.h / (4 * stages)));
+  const auto first_row = [&](int c) { return int(int64_t(L.h) * c / chunks); };
+  const auto parallel = [&](int first, int last, const auto& body) {
+    if (last - first == 1)
+      body(first);
+    else if (last > first)
+      tbb::parallel_for(first, last, body);
   };
-  const auto parallel = [&](const auto& body) {
-    if (chunks == 1) {
-      std::vector<float> buf(size_t(L.w));
-      body(0, buf.data());
-      return;
-    }
-    tbb::parallel_for(0, chunks, [&](int k) {
-      std::vector<float> buf(size_t(L.w));
-      body(k, buf.data());
-    });
-  };
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    parallel([&](int k, float* buf) {
-      const auto [y0, y1] = chunk_rows(k);
-      stage(y0, true, buf);
-      for (int y = y0 + 1; y < y1; ++y) {
-        stage(y, true, buf);
-        if (y - 1 > y0) stage(y - 1, false, buf);
+  parallel(0, chunks, [&](int c) {
+    const int y0 = first_row(c), y1 = first_row(c + 1);
+    for (int t = y0; t < y1 + stages; ++t)
+      for (int k = 0; k < stages; ++k) {
+        const int y = t - k;
+        if (y >= (c == 0 ? 0 : y0 + k) && y < (c + 1 == chunks ? L.h : y1 - k)) stage(y, k);
       }
-    });
-    parallel([&](int k, float* buf) {
-      const auto [y0, y1] = chunk_rows(k);
-      stage(y0, false, buf);
-      if (y1 - 1 > y0) stage(y1 - 1, false, buf);
-    });
-  }
+  });
+  parallel(1, chunks, [&](int c) {
+    const int b = first_row(c);
+    for (int k = 1; k < stages; ++k)
+      for (int y = std::max(0, b - k); y < std::min(L.h, b + k); ++y) stage(y, k);
+  });
 }
 
 // Row y of out = b - A e on level l (b == nullptr: out = -A e), every channel: out[c] points at
