@@ -20,6 +20,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 
@@ -79,7 +80,7 @@ struct Prolongation {
 };
 
 // The arrays of a solve that outlive it: levels, prolongations and the fixed mask.
-// Each thread keeps one (see solve_multigrid) and solves reuse its allocations: at 1024^2 a
+// Kept between solves (see solve_in_workspace), so solves reuse its allocations: at 1024^2 a
 // fresh set costs about 70 MB of page faults per frame, a fifth of the solve. They also keep
 // the operators, so that the next solve of the same size rebuilds only the coarse points whose
 // stencils can have changed (consecutive frames differ around the hair only; see setup()).
@@ -91,7 +92,6 @@ struct Workspace {
   // The size of the problem whose operators `levels` and `prolong` hold; 0 when they hold none
   // (or a setup did not finish).
   int width = 0, height = 0;
-  bool busy = false;  // a solve on this thread is using it
 };
 
 // Sets `stored` to `value` and says whether its bits changed.
@@ -1440,23 +1440,29 @@ std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
 
 namespace {
 
-// Runs a solve in this thread's workspace. A solve's parallel loops may run another task on
-// this thread while it waits (TBB work stealing), and that task may solve too: it gets a
-// workspace of its own.
+// Runs a solve in a kept workspace: an idle one, or a new one when every kept one is in use.
+// Workspaces are kept per channel count and returned after the solve, so the memory kept is that
+// of the most solves ever in flight at once, not one per thread: `wisp render` shades one frame
+// at a time, on whichever thread, and its consecutive frames meet one workspace (whose next solve
+// of the same size rebuilds only what changed).
 template <int NC>
 Solution solve_in_workspace(const Problem& problem, const SolverOptions& options,
                             const std::vector<float>* initial_guess) {
-  thread_local Workspace kept;
-  if (kept.busy) {
-    Workspace own;
-    return Multigrid<NC>(problem, options, own).run(initial_guess);
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<Workspace>> idle;
+  std::unique_ptr<Workspace> ws;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (!idle.empty()) {
+      ws = std::move(idle.back());
+      idle.pop_back();
+    }
   }
-  struct Hold {
-    Workspace& ws;
-    explicit Hold(Workspace& w) : ws(w) { ws.busy = true; }
-    ~Hold() { ws.busy = false; }
-  } hold(kept);
-  return Multigrid<NC>(problem, options, kept).run(initial_guess);
+  if (!ws) ws = std::make_unique<Workspace>();
+  Solution solution = Multigrid<NC>(problem, options, *ws).run(initial_guess);
+  const std::lock_guard<std::mutex> lock(mutex);
+  idle.push_back(std::move(ws));  // (not after an exception: that workspace is dropped)
+  return solution;
 }
 
 }  // namespace
