@@ -153,11 +153,6 @@ FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
     r.time.hatching = ms_since(t0);
   }
 
-  if (!r.curves.empty()) {
-    t0 = Clock::now();
-    r.problem = diffusion::rasterize(r.curves, W, H);
-    r.time.rasterize = ms_since(t0);
-  }
   r.time.total = ms_since(t_start);
   return r;
 }
@@ -168,7 +163,12 @@ void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const Fram
   FramePicture& pic = r.picture;
   const int W = pic.width, H = pic.height;
   if (!r.curves.empty()) {
+    // Rasterized here rather than with the geometry: frames waiting to be shaded do not hold
+    // their constraints (18 MB at 1024^2).
     auto t0 = Clock::now();
+    r.problem = diffusion::rasterize(r.curves, W, H);
+    r.time.rasterize = ms_since(t0);
+    t0 = Clock::now();
     // The warm start holds the colours, then the previous blur map when there was one.
     const size_t n = r.problem.pixel_count();
     const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);

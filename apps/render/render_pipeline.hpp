@@ -79,8 +79,8 @@ FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          const sim::ProjectedFrame* neighbour = nullptr);
 
 // render_frame in its two halves, for renderers that overlap frames (render_range.hpp): the
-// geometry (wisps, arrangement, curves, ink, hatching and the rasterized constraints) depends on
-// the frame alone; the shading (solve, anti-aliasing, blur) on the previous frame's solution too.
+// geometry (wisps, arrangement, curves, ink, hatching) depends on the frame alone; the shading
+// (rasterized constraints, solve, anti-aliasing, blur) on the previous frame's solution too.
 // render_shading completes what render_geometry returned, with the same arguments as above.
 FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
                             std::vector<vector::Occluder> occluders, vector::HairBase base,
