@@ -22,11 +22,20 @@ namespace {
 using diffusion::Clock;
 using diffusion::ms_since;
 
-using Cover = std::vector<std::pair<int, int>>;  // (wisp, winding != 0), sorted by wisp
+using Winding = std::pair<int, int>;  // (wisp, winding != 0)
+using Cover = std::vector<Winding>;   // sorted by wisp
 
-int winding(const Cover& c, int wisp) {
-  const auto it = std::lower_bound(c.begin(), c.end(), std::make_pair(wisp, INT32_MIN));
-  return it != c.end() && it->first == wisp ? it->second : 0;
+// A face's cover as stored: a range of Resolver::cover_pool.
+struct CoverRange {
+  const Winding *first, *last;
+  const Winding* begin() const { return first; }
+  const Winding* end() const { return last; }
+  bool empty() const { return first == last; }
+};
+
+int winding(CoverRange c, int wisp) {
+  const Winding* it = std::lower_bound(c.first, c.last, std::make_pair(wisp, INT32_MIN));
+  return it != c.last && it->first == wisp ? it->second : 0;
 }
 
 void add_winding(Cover& c, int wisp, int delta) {
@@ -59,11 +68,26 @@ struct Resolver {
            const ArrangementOptions& o)
       : wisps(w), segments(s), map(m), options(o) {
     cells.reserve(w.size());
-    for (const Wisp& wisp : w) cells.push_back(band_cells(wisp));
+    nearest.reserve(w.size());
+    for (const Wisp& wisp : w) {
+      cells.push_back(band_cells(wisp));
+      // A band depth interpolates two sections' depths: within rounding of the nearest one.
+      double lo = INFINITY, size = 0;
+      for (const Section& sec : wisp.sections)
+        lo = std::min(lo, sec.depth), size = std::max(size, std::abs(sec.depth));
+      nearest.push_back(lo - 1e-12 * size);
+    }
   }
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
-  std::vector<Cover> cover;      // per face
+  std::vector<double> nearest;   // per wisp: no band depth of it is below this
+  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
+  // all faces instead of one each.
+  std::vector<Winding> cover_pool;
+  std::vector<std::pair<int, int>> cover_at;
+  CoverRange cover(int f) const {
+    return {cover_pool.data() + cover_at[f].first, cover_pool.data() + cover_at[f].second};
+  }
   std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
   std::vector<char> hair;        // per face: covered and in view
   std::vector<char> in_view;
@@ -73,6 +97,7 @@ struct Resolver {
   // Buffers of interior_point, kept across faces to spare an allocation per face.
   mutable std::vector<std::pair<Vector2d, Vector2d>> scratch_edges;
   mutable std::vector<double> scratch_xs;
+  std::vector<std::pair<double, int>> scratch_order;  // of order_faces
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
@@ -100,7 +125,9 @@ struct Resolver {
   // Winding numbers: zero in the unbounded face; crossing a segment from its left (CGAL's
   // orientation) to its right lowers its wisp's winding by one.
   void propagate_cover() {
-    cover.assign(map.faces.size(), {});
+    cover_pool.clear();
+    cover_at.assign(map.faces.size(), {0, 0});
+    Cover c;
     std::vector<char> seen(map.faces.size(), 0);
     std::vector<int> queue = {map.unbounded_face};
     seen[map.unbounded_face] = 1;
@@ -112,7 +139,8 @@ struct Resolver {
           const int g = map.halfedges[h ^ 1].face;
           if (!seen[g]) {
             seen[g] = 1;
-            Cover c = cover[f];
+            c.assign(cover_pool.begin() + cover_at[f].first,
+                     cover_pool.begin() + cover_at[f].second);
             const int e = h / 2;
             for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
               const PlanarMap::Source& s = map.sources[i];
@@ -121,7 +149,8 @@ struct Resolver {
               const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
               add_winding(c, w, along_h ? -1 : +1);
             }
-            cover[g] = std::move(c);
+            cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
+            cover_pool.insert(cover_pool.end(), c.begin(), c.end());
             queue.push_back(g);
           }
           h = map.halfedges[h].next;
@@ -171,23 +200,31 @@ struct Resolver {
     front_depth.assign(faces, 0);
     for (int f = 0; f < faces; ++f) {
       if (f == map.unbounded_face) continue;
-      if (cover[f].empty() && !options.keep_faces) continue;
+      if (cover(f).empty() && !options.keep_faces) continue;
       sample[f] = interior_point(f);
       in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
-      if (cover[f].empty()) continue;
+      if (cover(f).empty()) continue;
       // Front-most by depth at the sample point; ties go to the lower wisp index. An occluder
       // in front of every wisp makes the face its own: not hair, unless the hair base covers
       // the face and is nearer than that occluder (it lies on the head, behind every wisp).
+      // The candidates are tried nearest bound first (occluders first), so that the wisps
+      // wholly behind the front-most so far need no lookup.
       double best = INFINITY;
       bool on_base = false;
-      for (const auto& [w, _] : cover[f]) {
-        if (w == base_id()) {
+      std::vector<std::pair<double, int>>& order = scratch_order;
+      order.clear();
+      for (const auto& [w, _] : cover(f)) {
+        if (w == base_id())
           on_base = true;
-          continue;
-        }
+        else
+          order.emplace_back(w < n_wisps() ? nearest[w] : -INFINITY, w);
+      }
+      std::sort(order.begin(), order.end());
+      for (const auto& [bound, w] : order) {
+        if (bound > best) break;
         const double z = w < n_wisps() ? band_depth(wisps[w], cells[w], sample[f]).depth
                                        : options.occluders[w - n_wisps()].depth(sample[f]);
-        if (z < best) best = z, front[f] = w;
+        if (z < best || (z == best && w < front[f])) best = z, front[f] = w;
       }
       if (front[f] < 0 || front[f] >= n_wisps()) {
         front[f] = -1;
@@ -222,7 +259,7 @@ struct Resolver {
           visible[i] = vis;
           continue;
         }
-        if (vis && winding(cover[fl], w) != 0 && winding(cover[fr], w) != 0) {
+        if (vis && winding(cover(fl), w) != 0 && winding(cover(fr), w) != 0) {
           const Vector2d m =
               0.5 * (map.vertices[map.source(2 * e)] + map.vertices[map.halfedges[2 * e].target]);
           const Vector2d ab = seg.b - seg.a;
@@ -327,7 +364,8 @@ struct Resolver {
     return flag;
   }
 
-  ArrangementView view() const {
+  // `crossing`: intersection_flags().
+  ArrangementView view(const std::vector<char>& crossing) const {
     ArrangementView v;
     v.faces.resize(map.faces.size());
     for (int f = 0; f < int(map.faces.size()); ++f) {
@@ -337,7 +375,7 @@ struct Resolver {
       if (face.outer >= 0) vf.outer = ring(face.outer);
       for (int i = face.holes_begin; i < face.holes_end; ++i)
         vf.holes.push_back(ring(map.holes[i]));
-      for (const auto& c : cover[f])
+      for (const Winding& c : cover(f))
         if (is_wisp(c.first)) vf.cover.push_back(c);
       vf.base = hair[f] && is_base_front(f);
       vf.front = hair[f] && !vf.base ? front[f] : -1;
@@ -373,7 +411,6 @@ struct Resolver {
       ve.silhouette = hl != hr && !frame_edge(e);
       ve.occlusion = hl && hr && front[ve.face_left] != front[ve.face_right];
     }
-    const std::vector<char> crossing = intersection_flags();
     for (int i = 0; i < int(v.vertices.size()); ++i) v.vertices[i].intersection = crossing[i];
     for (int e = 0; e < map.edge_count(); ++e) {
       ++v.vertices[map.source(2 * e)].degree;
@@ -493,7 +530,8 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   out.silhouette = chain_edges(map, silhouette);
   out.occlusion = chain_edges(map, occlusion);
   out.occluder_cuts = chain_edges(map, cuts);
-  if (options.keep_faces) out.view = r.view();
+  std::vector<char> crossing;  // computed once, for the view and the stats
+  if (options.keep_faces) out.view = r.view(crossing = r.intersection_flags());
   out.stats.resolve_ms = ms_since(t1);
   out.stats.resolve_cpu_ms = diffusion::thread_cpu_ms() - cpu1;
 
@@ -502,7 +540,8 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   out.stats.edges = map.edge_count();
   out.stats.faces = int(map.faces.size());
   for (char h : r.hair) out.stats.covered_faces += h;
-  for (char c : r.intersection_flags()) out.stats.intersections += c;
+  if (!options.keep_faces) crossing = r.intersection_flags();
+  for (char c : crossing) out.stats.intersections += c;
   return out;
 }
 

@@ -19,8 +19,14 @@ std::vector<HairMask> trace_regions(const PlanarMap& map, const std::vector<int>
   // Connected regions: faces joined across edges with the same label on both sides.
   std::vector<int> region(map.faces.size(), -1), region_label;
   std::vector<int> stack;
-  std::vector<std::vector<int>> face_halfedges(map.faces.size());
-  for (int h = 0; h < int(he.size()); ++h) face_halfedges[he[h].face].push_back(h);
+  // Each face's halfedges in index order: face f's are at[first[f] .. first[f + 1]).
+  std::vector<int> first(map.faces.size() + 1, 0), at(he.size());
+  for (const auto& x : he) ++first[x.face + 1];
+  for (size_t f = 0; f < map.faces.size(); ++f) first[f + 1] += first[f];
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (int h = 0; h < int(he.size()); ++h) at[fill[he[h].face]++] = h;
+  }
   for (int f = 0; f < int(map.faces.size()); ++f) {
     if (label[f] < 0 || region[f] >= 0) continue;
     region[f] = int(region_label.size());
@@ -28,8 +34,8 @@ std::vector<HairMask> trace_regions(const PlanarMap& map, const std::vector<int>
     while (!stack.empty()) {
       const int g = stack.back();
       stack.pop_back();
-      for (int h : face_halfedges[g]) {
-        const int n = he[h ^ 1].face;
+      for (int i = first[g]; i < first[g + 1]; ++i) {
+        const int n = he[at[i] ^ 1].face;
         if (label[n] == label[f] && region[n] < 0) region[n] = region[f], stack.push_back(n);
       }
     }

@@ -127,9 +127,15 @@ struct Extruder {
   const WispStyle& style;
   double focal_px;
   std::vector<std::array<double, 2>> width;  // [span * kWidthSamples + j] = {left, right}
+  std::vector<double> scale;                 // per span: its control polygon's length
 
   Extruder(const std::vector<Span>& s, const WispStyle& st, double f)
       : spans(s), style(st), focal_px(f) {
+    scale.reserve(s.size());
+    for (const Span& span : s) {
+      const Cubic& c = span.b;
+      scale.push_back((c[3] - c[0]).norm() + (c[1] - c[0]).norm() + (c[2] - c[1]).norm());
+    }
     limit_widths();
   }
 
@@ -137,19 +143,21 @@ struct Extruder {
 
   // Unit direction of travel; at a cusp (a hairpin in the samples) B' vanishes and the limit
   // direction is that of B''.
-  Vector2d direction(int i, double v) const {
+  // `d1`: B'(v).
+  Vector2d direction(int i, double v, Vector2d d1) const {
     const Cubic& c = spans[i].b;
-    const double scale = (c[3] - c[0]).norm() + (c[1] - c[0]).norm() + (c[2] - c[1]).norm();
-    Vector2d d = derivative(c, v);
-    if (d.norm() <= 1e-12 * scale) d = second_derivative(c, v) * (v < 0.5 ? 1 : -1);
-    if (d.norm() <= 1e-12 * scale) d = c[3] - c[0];
-    const double n = d.norm();
-    return n > 0 ? Vector2d(d / n) : Vector2d(1, 0);
+    if (d1.norm() <= 1e-12 * scale[i]) d1 = second_derivative(c, v) * (v < 0.5 ? 1 : -1);
+    if (d1.norm() <= 1e-12 * scale[i]) d1 = c[3] - c[0];
+    const double n = d1.norm();
+    return n > 0 ? Vector2d(d1 / n) : Vector2d(1, 0);
   }
 
-  Vector2d left_normal(int i, double v) const {
-    const Vector2d d = direction(i, v);
+  Vector2d left_normal(int i, double v, const Vector2d& d1) const {
+    const Vector2d d = direction(i, v, d1);
     return {d.y(), -d.x()};
+  }
+  Vector2d left_normal(int i, double v) const {
+    return left_normal(i, v, derivative(spans[i].b, v));
   }
 
   // Perspective width times the profile and the root taper, before any limit. A clump's width
@@ -175,11 +183,11 @@ struct Extruder {
       const int i = std::min(g / kWidthSamples, int(spans.size()) - 1);
       const double v = double(g - i * kWidthSamples) / kWidthSamples;
       const Cubic& c = spans[i].b;
+      const Vector2d d1 = derivative(c, v), d2 = second_derivative(c, v);
       b[g] = eval(c, v);
-      normal[g] = left_normal(i, v);
+      normal[g] = left_normal(i, v, d1);
       free[g] = free_width(i, v);
       if (g > 0) arc[g] = arc[g - 1] + (b[g] - b[g - 1]).norm();
-      const Vector2d d1 = derivative(c, v), d2 = second_derivative(c, v);
       const double k = cross(d1, d2), speed2 = d1.squaredNorm();
       // Centre of curvature B + |B'|^2 / (B' x B'') * perp(B'); a cusp is its own centre.
       if (speed2 == 0) {
@@ -189,30 +197,109 @@ struct Extruder {
         has_centre[g] = 1;
       }
     }
+    // Bounds by which the scans below pass over samples that cannot lower a width (a width is the
+    // least of its caps, so leaving out one that is not below it changes nothing): the radius of
+    // curvature per sample, the box of the samples per block (a span's), and the turning of the
+    // sample polyline summed from its start. The directions along a stretch that turns by at most
+    // 60 degrees in all lie within 30 degrees of a middle one, so the stretch is at least
+    // cos 30 > 1 / 1.2 of its arc length long from end to end: it holds no fold.
+    const int blocks = (n + kWidthSamples - 1) / kWidthSamples;
+    std::vector<double> radius(n, INFINITY);
+    std::vector<Eigen::AlignedBox2d> box(blocks);
+    double extent = arc[n - 1];
+    for (int g = 0; g < n; ++g) {
+      const int k = g / kWidthSamples;
+      if (has_centre[g]) radius[g] = (centre[g] - b[g]).norm();
+      box[k].extend(b[g]);
+      extent = std::max(extent, b[g].cwiseAbs().maxCoeff());
+    }
+    const double slack = 1e-9 * (extent + 1);  // far above the rounding of arc lengths and gaps
+    auto past_block = [&](int k, int dir) {    // the last sample of block k in direction dir
+      return dir > 0 ? std::min(n, (k + 1) * kWidthSamples) - 1 : k * kWidthSamples;
+    };
+    // turning[k]: at least the turning from segment 0 (b[0] -> b[1]) to segment k. Unit
+    // directions a chord c <= 1 apart differ by 2 asin(c / 2) <= (pi / 3) c; above, count a half
+    // turn. A segment of length zero keeps the direction before it.
+    constexpr double kStraight = M_PI / 3;
+    std::vector<double> turning(n, 0);
+    Vector2d heading(0, 0);
+    for (int k = 0; k + 1 < n; ++k) {
+      const double length = arc[k + 1] - arc[k];
+      double turn = 0;
+      if (length > 0) {
+        const Vector2d d = (b[k + 1] - b[k]) / length;
+        if (heading != Vector2d(0, 0)) {
+          const double c = (d - heading).norm();
+          turn = c <= 1 ? 1.0472 * c : M_PI;
+        }
+        heading = d;
+      }
+      turning[k] = (k > 0 ? turning[k - 1] : 0) + turn;
+    }
+    // The centres that can lower some width: a radius below (2 + 1 / clamp) free widths.
+    const double free_max = *std::max_element(free.begin(), free.end());
+    std::vector<int> tight;
+    for (int j = 0; j < n; ++j)
+      if (has_centre[j] &&
+          !(style.curvature_clamp * (radius[j] - 2 * free_max - slack) >= free_max))
+        tight.push_back(j);
+    int next_tight = 0;  // per g, the first tight centre after g
+    // Per g, the segments from g on (before g) within kStraight of turning end at ahead (behind).
+    int ahead = 0, behind = 0;
+
     width.assign(n, {0, 0});
     for (int g = 0; g < n; ++g) {
       std::array<double, 2> h = {free[g], free[g]};
-      // Centres of curvature on each side, within twice the free width along the curve.
+      auto widest = [&] { return std::max(h[0], h[1]); };
+      auto lower = [&](int side, double cap) {
+        if (cap < h[side]) h[side] = cap;
+      };
+      // Centres of curvature on each side, within twice the free width along the curve: only
+      // the tight ones can lower a width. A centre of radius R at arc distance a lies at least
+      // R - a away.
+      while (next_tight < int(tight.size()) && tight[next_tight] <= g) ++next_tight;
       for (int dir : {-1, +1}) {
-        for (int j = dir < 0 ? g : g + 1;
-             j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 2 * free[g]; j += dir) {
-          if (!has_centre[j]) continue;
+        for (int t = dir < 0 ? next_tight - 1 : next_tight; t >= 0 && t < int(tight.size());
+             t += dir) {
+          const int j = tight[t];
+          if (!(std::abs(arc[j] - arc[g]) <= 2 * free[g])) break;
+          if (style.curvature_clamp * (radius[j] - std::abs(arc[j] - arc[g]) - slack) >= widest())
+            continue;
           const Vector2d to = centre[j] - b[g];
-          const int side = to.dot(normal[g]) > 0 ? 0 : 1;  // the left side faces +N
-          h[side] = std::min(h[side], style.curvature_clamp * to.norm());
+          lower(to.dot(normal[g]) > 0 ? 0 : 1, style.curvature_clamp * to.norm());  // left: +N
         }
       }
       // Folds: where the curve bends back (a sharp V, the next arch of a coil), a point of it
       // ahead of this side (within 60 degrees of the normal) that is much nearer in space than
       // along the curve; each of the two passes may take half the gap.
+      for (ahead = std::max(ahead, g); ahead < n - 1 && turning[ahead] <= turning[g] + kStraight;)
+        ++ahead;
+      while (g > 0 && behind < g - 1 && turning[behind] < turning[g - 1] - kStraight) ++behind;
       for (int dir : {-1, +1}) {
+        // The first sample past the straight stretch from g.
+        const int straight_end = dir > 0 ? (ahead < n - 1 ? ahead + 1 : n)
+                                 : g > 0 ? behind - 1
+                                         : -1;
+        int block = -1;
         for (int j = g + dir; j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 8 * free[g];
              j += dir) {
+          if ((j - straight_end) * dir < 0 && std::abs(arc[j] - arc[g]) > slack) {
+            j = straight_end - dir;
+            continue;
+          }
+          if (const int k = j / kWidthSamples; k != block) {
+            block = k;
+            // Half the gap to any sample of the block cannot lower either side.
+            const double far = widest() * (2 / style.curvature_clamp) + slack;
+            if (box[k].squaredExteriorDistance(b[g]) >= far * far) {
+              j = past_block(k, dir);
+              continue;
+            }
+          }
           const Vector2d to = b[j] - b[g];
           const double gap = to.norm(), along = to.dot(normal[g]);
           if (std::abs(arc[j] - arc[g]) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
-          const int side = along > 0 ? 0 : 1;
-          h[side] = std::min(h[side], 0.5 * style.curvature_clamp * gap);
+          lower(along > 0 ? 0 : 1, 0.5 * style.curvature_clamp * gap);
         }
       }
       for (double& x : h) x = x < 1e-9 ? 0.0 : x;
@@ -238,23 +325,29 @@ struct Extruder {
                              (-2 * f3 + 3 * f2) * y1 + (f3 - f2) * m1);
   }
 
-  Vector2d offset(int i, double v, double sign) const {
-    return eval(spans[i].b, v) + sign * half_width(i, v, sign > 0 ? 0 : 1) * left_normal(i, v);
+  // The left (+N d_left) and the right (-N d_right) offset at v, which share B(v) and N(v).
+  std::array<Vector2d, 2> offsets(int i, double v) const {
+    const Vector2d c = eval(spans[i].b, v), n = left_normal(i, v);
+    return {c + half_width(i, v, 0) * n, c + -half_width(i, v, 1) * n};
   }
 
   // dp/dv by finite differences that stay inside the span (the spline is only G1 across spans).
-  Vector2d offset_derivative(int i, double v, double sign) const {
+  std::array<Vector2d, 2> offset_derivatives(int i, double v) const {
     const double h = 1e-6;
     const double a = std::max(0.0, v - h), b = std::min(1.0, v + h);
-    return (offset(i, b, sign) - offset(i, a, sign)) / (b - a);
+    const std::array<Vector2d, 2> pa = offsets(i, a), pb = offsets(i, b);
+    return {(pb[0] - pa[0]) / (b - a), (pb[1] - pa[1]) / (b - a)};
   }
 
-  // Hermite cubic matching the offset's ends and end derivatives on [v0, v1].
-  Cubic hermite(int i, double v0, double v1, double sign) const {
-    const Vector2d p0 = offset(i, v0, sign), p3 = offset(i, v1, sign);
+  // Hermite cubics matching the offsets' ends and end derivatives on [v0, v1]: left, right.
+  std::array<Cubic, 2> hermites(int i, double v0, double v1) const {
+    const std::array<Vector2d, 2> p0 = offsets(i, v0), p3 = offsets(i, v1);
+    const std::array<Vector2d, 2> d0 = offset_derivatives(i, v0), d3 = offset_derivatives(i, v1);
     const double third = (v1 - v0) / 3;
-    return {p0, p0 + offset_derivative(i, v0, sign) * third,
-            p3 - offset_derivative(i, v1, sign) * third, p3};
+    std::array<Cubic, 2> out;
+    for (int s = 0; s < 2; ++s)
+      out[s] = {p0[s], p0[s] + d0[s] * third, p3[s] - d3[s] * third, p3[s]};
+    return out;
   }
 };
 
@@ -268,13 +361,14 @@ struct Piece {
 
 void fit_pieces(const Extruder& ex, int span, double v0, double v1, int level,
                 std::vector<Piece>& out) {
-  Piece piece{span, v0, v1, ex.hermite(span, v0, v1, +1), ex.hermite(span, v0, v1, -1)};
+  const std::array<Cubic, 2> sides = ex.hermites(span, v0, v1);
+  Piece piece{span, v0, v1, sides[0], sides[1]};
   if (level < 12) {
     double error = 0;
     for (double q : {0.1, 0.3, 0.5, 0.7, 0.9}) {
-      const double v = v0 + (v1 - v0) * q;
-      error = std::max(error, (eval(piece.left, q) - ex.offset(span, v, +1)).norm());
-      error = std::max(error, (eval(piece.right, q) - ex.offset(span, v, -1)).norm());
+      const std::array<Vector2d, 2> exact = ex.offsets(span, v0 + (v1 - v0) * q);
+      error = std::max(error, (eval(piece.left, q) - exact[0]).norm());
+      error = std::max(error, (eval(piece.right, q) - exact[1]).norm());
     }
     if (error > ex.style.fit_tolerance_px) {
       const double mid = 0.5 * (v0 + v1);
@@ -286,16 +380,23 @@ void fit_pieces(const Extruder& ex, int span, double v0, double v1, int level,
   out.push_back(piece);
 }
 
-double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+double squared_distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
   const Vector2d ab = b - a;
   const double len2 = ab.squaredNorm();
   const double l = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + l * ab - p).norm();
+  return (a + l * ab - p).squaredNorm();
 }
 
 // Douglas-Peucker on three polylines at once: a section stays if dropping it would move the
-// left, right or centre polyline by more than `tolerance`. The ends always stay.
+// left, right or centre polyline by more than `tolerance`. The ends always stay. A section's
+// distance, the largest of its three, is the root of the largest square; the root is taken only
+// where the square passes the worst one so far (roots are monotone: the same sections win).
 std::vector<Section> simplify(const std::vector<Section>& dense, double tolerance) {
+  // The largest square whose root is within the tolerance.
+  double within = tolerance * tolerance;
+  while (within > 0 && std::sqrt(within) > tolerance) within = std::nextafter(within, 0.0);
+  while (within < INFINITY && std::sqrt(std::nextafter(within, INFINITY)) <= tolerance)
+    within = std::nextafter(within, INFINITY);
   const int n = int(dense.size());
   std::vector<char> keep(n, 0);
   keep[0] = keep[n - 1] = 1;
@@ -303,14 +404,18 @@ std::vector<Section> simplify(const std::vector<Section>& dense, double toleranc
   while (!stack.empty()) {
     const auto [a, b] = stack.back();
     stack.pop_back();
-    double worst = tolerance;
+    double worst = tolerance, worst_square = within;
     int split = -1;
+    const Section &sa = dense[a], &sb = dense[b];
     for (int j = a + 1; j < b; ++j) {
-      const Section &s = dense[j], &sa = dense[a], &sb = dense[b];
-      const double d = std::max({distance_to_segment(s.left, sa.left, sb.left),
-                                 distance_to_segment(s.right, sa.right, sb.right),
-                                 distance_to_segment(s.centre, sa.centre, sb.centre)});
+      const Section& s = dense[j];
+      const double square = std::max({squared_distance_to_segment(s.left, sa.left, sb.left),
+                                      squared_distance_to_segment(s.right, sa.right, sb.right),
+                                      squared_distance_to_segment(s.centre, sa.centre, sb.centre)});
+      if (square <= worst_square) continue;
+      const double d = std::sqrt(square);
       if (d > worst) worst = d, split = j;
+      worst_square = square;
     }
     if (split < 0) continue;
     keep[split] = 1;
