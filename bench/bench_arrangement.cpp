@@ -175,6 +175,7 @@ int run_arrangement(const std::vector<std::string>& args) {
       if (!exact_gave_up) {
         vector::ArrangementOptions unclipped;
         unclipped.clip_to_view = false;
+        unclipped.cull_hidden = false;  // the exact arrangement has every outline
         const auto plain = vector::build_arrangement(wisps, unclipped);
         exact = exact_in_child(wisps, exact_timeout);
         if (exact.front() == '{')
@@ -186,15 +187,15 @@ int run_arrangement(const std::vector<std::string>& args) {
       const double ms = median(total);
       std::printf(
           "      {\"wisps\": %d, \"outline_cubics\": %ld, \"segments\": %d, \"vertices\": %d, "
-          "\"edges\": %d, \"faces\": %d, \"intersections\": %d,\n"
+          "\"edges\": %d, \"faces\": %d, \"intersections\": %d, \"hidden_wisps\": %d,\n"
           "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
           "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
           "       \"sweep_cpu_ms\": %.2f, \"arrangement_cpu_ms\": %.2f,\n"
           "       \"exact_bezier\": %s}%s\n",
           n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges, arr.stats.faces,
-          arr.stats.intersections, median(build), median(sweep), median(resolve), ms,
-          1000 * ms / arr.stats.segments, median(sweep_cpu), median(total_cpu), exact.c_str(),
-          s + 1 < sizes.size() ? "," : "");
+          arr.stats.intersections, arr.stats.hidden_wisps, median(build), median(sweep),
+          median(resolve), ms, 1000 * ms / arr.stats.segments, median(sweep_cpu), median(total_cpu),
+          exact.c_str(), s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
     std::printf("    ]}%s\n", k + 1 < scenes.size() ? "," : "");

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "sim/camera.hpp"
@@ -16,12 +17,20 @@ namespace wisp::sim {
 
 class SurfaceRays {
  public:
-  // `triangles`: world space, the columns are the corners.
-  SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera);
+  // `triangles`: world space, the columns are the corners. `with_folds` finds the edges where
+  // the surface's picture folds, which max_depth needs (it is +infinity without them).
+  SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
+              bool with_folds = false);
 
   // Distance from the eye along the ray through pixel p to the nearest triangle; +infinity on a
   // miss.
   double depth(const Eigen::Vector2d& p) const;
+  // An upper bound of depth() over the box, +infinity when none is found (or without folds): for
+  // a box that no fold
+  // of the surface's picture meets and whose centre ray hits, the farthest any triangle meeting
+  // it can be there. Lets the arrangement prove hair behind the body hidden
+  // (vector/hidden_wisps.hpp).
+  double max_depth(const Eigen::AlignedBox2d& box) const;
   // The unit direction of the eye ray through pixel p (the inverse of Camera::project).
   Eigen::Vector3d ray(const Eigen::Vector2d& p) const;
 
@@ -33,6 +42,8 @@ class SurfaceRays {
 
  private:
   int cell(double v, double lo, double hi) const;
+  std::pair<int, double> first_hit(const Eigen::Vector2d& p) const;  // triangle, distance
+  void find_folds();
 
   std::vector<Eigen::Matrix3d> world_;
   std::vector<std::array<Eigen::Vector2d, 3>> pixel_;
@@ -40,6 +51,8 @@ class SurfaceRays {
   Eigen::AlignedBox2d box_;
   int cells_ = 1;
   std::vector<std::vector<int>> grid_;
+  std::vector<std::array<bool, 3>> fold_;      // per triangle edge (corner e to e + 1): a fold
+  std::vector<std::array<int, 3>> neighbour_;  // the triangle across it, -1 if none
 };
 
 }  // namespace wisp::sim

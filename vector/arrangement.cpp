@@ -10,6 +10,7 @@
 
 #include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
+#include "vector/hidden_wisps.hpp"
 #include "vector/ink.hpp"
 #include "vector/planar_map.hpp"
 
@@ -488,6 +489,20 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     const Vector2d c[4] = {v.corner(v.BottomLeft), v.corner(v.BottomRight), v.corner(v.TopRight),
                            v.corner(v.TopLeft)};
     for (int i = 0; i < 4; ++i) segments.push_back({c[i], c[(i + 1) % 4]});
+  }
+  if (options.cull_hidden) {
+    const auto tc = Clock::now();
+    HiddenWispOptions cull;
+    for (const Occluder& o : options.occluders) cull.occluder_max_depth.push_back(o.max_depth);
+    const std::vector<char> hidden = hidden_wisps(wisps, segments, cull);
+    const auto kept_end = std::remove_if(segments.begin(), segments.end(), [&](const auto& s) {
+      return s.wisp >= 0 && s.wisp < int(wisps.size()) && hidden[s.wisp];
+    });
+    out.stats.hidden_segments = int(segments.end() - kept_end);
+    segments.erase(kept_end, segments.end());
+    for (char h : hidden) out.stats.hidden_wisps += h;
+    out.stats.wisps -= out.stats.hidden_wisps;
+    out.stats.cull_ms = ms_since(tc);
   }
   const PlanarMap map = arrange_segments(segments);
   out.stats.sweep_ms = ms_since(t0);

@@ -34,6 +34,9 @@ struct Occluder {
   // Distance from the eye to the occluder's surface seen through a pixel; +infinity where the
   // ray misses it. Called once per face inside the ring.
   std::function<double(const Eigen::Vector2d&)> depth;
+  // Optional: an upper bound of `depth` over a box, +infinity where none is known. With it the
+  // occluder can prove wisps behind it hidden before the sweep (ArrangementOptions::cull_hidden).
+  std::function<double(const Eigen::AlignedBox2d&)> max_depth;
 };
 
 struct ArrangementOptions {
@@ -46,6 +49,10 @@ struct ArrangementOptions {
   // without them), and the inspector draws them.
   bool keep_faces = false;
   bool front_regions = false;  // fill WispArrangement::front_regions
+  // Leave out before the sweep the wisps that other wisps provably hide everywhere
+  // (vector/hidden_wisps.hpp): the outputs stay the same, the faces and edges inside the hair are
+  // fewer. Off: every wisp's outline enters (exact topology checks, counting what is hidden).
+  bool cull_hidden = true;
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
 };
@@ -70,12 +77,14 @@ struct InkLine {
 };
 
 struct ArrangementStats {
-  int wisps = 0;     // wisps inserted (after culling those wholly outside the view)
-  int segments = 0;  // input segments, frame sides included
+  int wisps = 0;  // wisps inserted (after culling those wholly outside the view or hidden)
+  int hidden_wisps = 0, hidden_segments = 0;  // left out as hidden (cull_hidden)
+  int segments = 0;                           // input segments, frame sides included
   int vertices = 0, edges = 0, faces = 0;
   int covered_faces = 0;
   int intersections = 0;  // vertices where outlines cross or touch
-  double sweep_ms = 0;    // CGAL insertion and export
+  double sweep_ms = 0;    // CGAL insertion and export, and the cull before it
+  double cull_ms = 0;     // the cull alone
   double resolve_ms = 0;  // coverage, depth order, visibility, mask, polylines
   double sweep_cpu_ms = 0, resolve_cpu_ms = 0;  // the same as CPU time of the calling thread
 };

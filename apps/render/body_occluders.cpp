@@ -49,13 +49,14 @@ std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const s
       behind |= (v - camera.eye).dot(camera.forward) <= 1e-3;
     // A surface reaching behind the eye has no meaningful silhouette; it is left out.
     if (behind || surface.triangles.empty()) continue;
-    auto s = std::make_shared<const sim::SurfaceRays>(sim::world_triangles(surface), camera);
+    auto s = std::make_shared<const sim::SurfaceRays>(sim::world_triangles(surface), camera, true);
     std::vector<Vector2d> points;
     for (const auto& px : s->pixels()) points.insert(points.end(), px.begin(), px.end());
     vector::Occluder o;
     o.ring = convex_hull(points);
     if (o.ring.size() < 3) continue;
     o.depth = [s, bias](const Vector2d& p) { return s->depth(p) + bias; };
+    o.max_depth = [s, bias](const Eigen::AlignedBox2d& b) { return s->max_depth(b) + bias; };
     out.push_back(std::move(o));
   }
   return out;

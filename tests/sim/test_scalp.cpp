@@ -139,3 +139,37 @@ TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden b
   CHECK(scalp->coverage(pose.to_local(back)) > 0.5);
   CHECK(view.field(camera.project(back)) < 0);
 }
+
+TEST_CASE("the depth bound over a box holds at every point of it, and is near where it is known",
+          "[sim][scalp]") {
+  HeadGeometry head;
+  const BodyModel model(head, [] {
+    BodyParams b = body_params(HeadParams{});
+    b.neck = b.torso = false;
+    b.slices = 48;
+    b.stacks = 24;
+    return b;
+  }());
+  CameraParams cp;
+  cp.width = cp.height = 200;
+  const Camera camera = Camera::look_at(cp);
+  const SurfaceRays plain(model.head_triangles(HeadPose{}), camera);
+  const SurfaceRays rays(model.head_triangles(HeadPose{}), camera, true);
+  CHECK(std::isinf(plain.max_depth(Eigen::AlignedBox2d(Vector2d(98, 98), Vector2d(102, 102)))));
+  int known = 0, tight = 0;
+  for (int y = 0; y < 200; y += 4)
+    for (int x = 0; x < 200; x += 4) {
+      const Eigen::AlignedBox2d box(Vector2d(x, y), Vector2d(x + 4, y + 4));
+      const double bound = rays.max_depth(box);
+      double deepest = 0;
+      for (int k = 0; k <= 8; ++k)
+        for (int l = 0; l <= 8; ++l)
+          deepest = std::max(deepest, rays.depth(Vector2d(x + 0.5 * k, y + 0.5 * l)));
+      if (std::isinf(bound)) continue;  // no bound: the box may reach past the silhouette
+      ++known;
+      CHECK(deepest <= bound);
+      tight += bound < deepest + 0.01;  // the facets near the box, not the far side of the head
+    }
+  CHECK(known > 50);
+  CHECK(tight > 0.9 * known);  // looser only where facets turn edge-on, at the silhouette
+}

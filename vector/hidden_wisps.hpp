@@ -1,0 +1,32 @@
+// Wisps that can be left out of the arrangement before the sweep: those hidden everywhere by other
+// wisps, proved on a coarse grid of squares. Four fifths of the sweep's intersections lie between
+// outline pieces nobody sees (docs/performance.md, "The sweep"); a wisp that is never the
+// front-most wisp of a face has no visible outline and is no face's front, so its outline need
+// not be swept. The test is conservative: it may keep a hidden wisp, never drops one that could be
+// any face's front (vector/hidden_wisps.cpp says why, and what of the outputs may still move).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <vector>
+
+#include "vector/planar_map.hpp"
+#include "vector/wisp.hpp"
+
+namespace wisp::vector {
+
+struct HiddenWispOptions {
+  double square_px = 4;  // side of the grid's squares (grown when the segments span a huge box)
+  // Per occluder (segments with id wisps.size() + k): an upper bound of its depth over a box,
+  // +infinity where unknown (Occluder::max_depth); an occluder without one hides nothing here.
+  std::vector<std::function<double(const Eigen::AlignedBox2d&)>> occluder_max_depth;
+};
+
+// Per wisp, 1 where it can be left out: every square its outline or inside may reach is wholly
+// covered by another wisp or an occluder that is nearer the eye than it all over the square.
+// `segments` are the arrangement's input (vector/planar_map.hpp); wisps with no segment get 0.
+std::vector<char> hidden_wisps(const std::vector<Wisp>& wisps,
+                               const std::vector<OutlineSegment>& segments,
+                               const HiddenWispOptions& options);
+
+}  // namespace wisp::vector
