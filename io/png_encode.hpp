@@ -1,4 +1,5 @@
-// Fast PNG encoding for the frames of a render: libpng at zlib level 1 with the Up filter only.
+// Fast PNG encoding for the frames of a render: libpng at zlib level 1 with the Up filter only and
+// run-length matches (Z_RLE).
 // Frames are mostly smooth gradients and flat fills, where that costs about a tenth of the time
 // of the default (level 6, adaptive filters) for files a few per cent larger; the pixels are the
 // same. Writing is on the per-frame path (the frame and the hair image inside its SVG), so it is
