@@ -249,6 +249,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   std::vector<long> resampled(size_t(height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<int> local;
+    struct CentreDistance {
+      size_t centre;
+      int curve;
+      double distance;
+    };
+    std::vector<CentreDistance> centre_distances;
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < width; ++x) {
         const size_t p = size_t(y) * width + x;
@@ -264,6 +270,16 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         std::sort(local.begin(), local.end());
         local.erase(std::unique(local.begin(), local.end()), local.end());
 
+        // A centre's distance to a curve, once per pixel: its sub-samples share a few of them.
+        centre_distances.clear();
+        const auto centre_distance = [&](const Vector2d& centre, size_t c, int curve) {
+          for (const CentreDistance& d : centre_distances)
+            if (d.centre == c && d.curve == curve) return d.distance;
+          const double d = nearest_point(centre, local, segments, curve).distance;
+          centre_distances.push_back({c, curve, d});
+          return d;
+        };
+
         // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
         // moved towards the colour of the nearest curve as q is nearer to it than the centre is
         // (the linear profile that the solve's boundary rule assumes along a link).
@@ -272,8 +288,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           const NearestPoint at = nearest_point(q, local, segments);
           Color wall;
           if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
-          const double from_centre =
-              nearest_point(centre, local, segments, at.segment->curve).distance;
+          const double from_centre = centre_distance(centre, c, at.segment->curve);
           if (!(from_centre > at.distance)) return solved;
           return Color(wall + (solved - wall) * float(at.distance / from_centre));
         };

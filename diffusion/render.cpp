@@ -66,7 +66,9 @@ Image render_drawing(const Drawing& drawing, int width, int height, const Solver
   }
   RasterizeOptions raster;
   raster.blur_channel = any_blur;
-  const MeshRaster coverage = rasterize_meshes(meshes, width, height);
+  // Only with meshes: their coverage is three full-size planes.
+  const MeshRaster coverage =
+      meshes.empty() ? MeshRaster{} : rasterize_meshes(meshes, width, height);
   const Problem problem =
       rasterize(curves, width, height, raster, meshes.empty() ? nullptr : &coverage);
   st.rasterize_ms = ms_since(t0);

@@ -2,6 +2,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -59,26 +60,54 @@ void mask_path(cairo_t* cr, const vector::HairMask& mask) {
   cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
 }
 
-// The hair image as an opaque Cairo surface.
-Surface hair_surface(const diffusion::Image& img) {
-  Surface s = make_surface(img.width, img.height);
+// The pixel box [x0, x1) x [y0, y1) of `img` that painting it scaled to width x height and
+// clipped by `mask` reads: the mask's bounding box in the image's pixels, grown by the reach of
+// Cairo's filter (a pixel at 1:1, more where the image is reduced).
+std::array<int, 4> hair_box(const vector::HairMask& mask, const diffusion::Image& img, int width,
+                            int height) {
+  double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+  for (const vector::MaskPolygon& poly : mask.polygons)
+    for (const Eigen::Vector2d& p : poly.outer) {
+      x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y());
+      x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+    }
+  const double sx = double(img.width) / width, sy = double(img.height) / height;
+  const int grow = 2 + 2 * int(std::ceil(std::max(sx, sy)));
+  const auto clamp = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
+  return {
+      clamp(std::floor(x0 * sx) - grow, img.width), clamp(std::floor(y0 * sy) - grow, img.height),
+      clamp(std::ceil(x1 * sx) + grow, img.width), clamp(std::ceil(y1 * sy) + grow, img.height)};
+}
+
+// The box [x0, x1) x [y0, y1) of the hair image as an opaque Cairo surface of its size.
+Surface hair_surface(const diffusion::Image& img, const std::array<int, 4>& box) {
+  const auto [x0, y0, x1, y1] = box;
+  Surface s = make_surface(x1 - x0, y1 - y0);
   cairo_surface_flush(s.get());
   unsigned char* data = cairo_image_surface_get_data(s.get());
   const int stride = cairo_image_surface_get_stride(s.get());
   const size_t n = size_t(img.width) * size_t(img.height);
-  const auto byte = [](float v) {
-    return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
-  };
-  for (int y = 0; y < img.height; ++y) {
-    auto* row = reinterpret_cast<std::uint32_t*>(data + size_t(y) * stride);
-    for (int x = 0; x < img.width; ++x) {
-      const size_t i = size_t(y) * img.width + x;
-      row[x] = 0xff000000u | byte(img.planes[i]) << 16 | byte(img.planes[n + i]) << 8 |
-               byte(img.planes[2 * n + i]);
-    }
+  for (int y = y0; y < y1; ++y) {
+    const float* r = &img.planes[size_t(y) * img.width + x0];
+    io::pack_rgb(r, r + n, r + 2 * n,
+                 reinterpret_cast<std::uint32_t*>(data + size_t(y - y0) * stride), x1 - x0);
   }
   cairo_surface_mark_dirty(s.get());
   return s;
+}
+
+// Paints the hair image, scaled to the picture, through the mask (the current clip is unchanged).
+void paint_hair(cairo_t* c, const FramePicture& pic) {
+  const std::array<int, 4> box = hair_box(pic.mask, pic.hair, pic.width, pic.height);
+  if (box[2] <= box[0] || box[3] <= box[1]) return;
+  const Surface hair = hair_surface(pic.hair, box);
+  cairo_save(c);
+  mask_path(c, pic.mask);
+  cairo_clip(c);
+  cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
+  cairo_set_source_surface(c, hair.get(), box[0], box[1]);
+  cairo_paint(c);
+  cairo_restore(c);
 }
 
 // Adds the convex hull of two discs (centres a, b; radii ra, rb) as one closed subpath, turning
@@ -169,7 +198,7 @@ Surface planes_surface(const std::vector<float>& planes, int w, int h) {
   const int stride = cairo_image_surface_get_stride(s.get());
   const size_t n = size_t(w) * h;
   const auto byte = [](float v, std::uint32_t most) {
-    return std::min(most, std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)));
+    return std::min(most, std::uint32_t(io::unit_byte(v)));
   };
   for (int y = 0; y < h; ++y) {
     auto* row = reinterpret_cast<std::uint32_t*>(data + size_t(y) * stride);
@@ -254,16 +283,7 @@ Surface draw(const FramePicture& pic) {
     cairo_surface_flush(surface.get());
     return surface;
   }
-  if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
-    Surface hair = hair_surface(pic.hair);
-    cairo_save(c);
-    mask_path(c, pic.mask);
-    cairo_clip(c);
-    cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
-    cairo_set_source_surface(c, hair.get(), 0, 0);
-    cairo_paint(c);
-    cairo_restore(c);
-  }
+  if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) paint_hair(c, pic);
   draw_ink(c, pic.hatching);
   // Fur: one fill per tuft, its strands in one path, so they do not darken where they overlap.
   for (const vector::FurTuft& tuft : pic.fur) {
@@ -321,12 +341,7 @@ std::vector<float> reblur_hair(const FramePicture& pic) {
   Surface layer = make_surface(pic.width, pic.height, CAIRO_FORMAT_ARGB32);
   if (!pic.hair.planes.empty() && !pic.mask.polygons.empty()) {
     Context cr(cairo_create(layer.get()), cairo_destroy);
-    cairo_t* c = cr.get();
-    Surface hair = hair_surface(pic.hair);
-    mask_path(c, pic.mask);
-    cairo_clip(c);
-    cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
-    paint_layer(c, hair.get());
+    paint_hair(cr.get(), pic);
   }
   std::vector<float> planes = surface_planes(layer.get());
   reblur(planes, pic.width, pic.height, pic.blur);
@@ -337,9 +352,7 @@ std::vector<std::uint8_t> hair_matte(const FramePicture& pic) {
   if (pic.blurred_hair.empty()) return rasterize_mask(pic.mask, pic.width, pic.height);
   const size_t n = size_t(pic.width) * pic.height;
   std::vector<std::uint8_t> coverage(n);
-  for (size_t i = 0; i < n; ++i)
-    coverage[i] =
-        std::uint8_t(std::lround(std::clamp(pic.blurred_hair[3 * n + i], 0.0f, 1.0f) * 255));
+  for (size_t i = 0; i < n; ++i) coverage[i] = io::unit_byte(pic.blurred_hair[3 * n + i]);
   return coverage;
 }
 
@@ -356,20 +369,9 @@ void write_mask_png(const vector::HairMask& mask, int width, int height,
 
 void write_frame_png(const FramePicture& pic, const std::filesystem::path& path) {
   const Surface s = draw(pic);
-  // Cairo's RGB24 pixels are native-endian 0x00RRGGBB words; the PNG wants RGB bytes.
-  const unsigned char* data = cairo_image_surface_get_data(s.get());
-  const int stride = cairo_image_surface_get_stride(s.get());
-  std::vector<std::uint8_t> rgb(size_t(pic.width) * pic.height * 3);
-  for (int y = 0; y < pic.height; ++y) {
-    const auto* row = reinterpret_cast<const std::uint32_t*>(data + size_t(y) * stride);
-    std::uint8_t* out = &rgb[size_t(y) * pic.width * 3];
-    for (int x = 0; x < pic.width; ++x) {
-      out[3 * x] = (row[x] >> 16) & 0xff;
-      out[3 * x + 1] = (row[x] >> 8) & 0xff;
-      out[3 * x + 2] = row[x] & 0xff;
-    }
-  }
-  io::write_png_fast(path, {rgb.data(), pic.width, pic.height, 3, size_t(pic.width) * 3});
+  // Cairo's RGB24 pixels are native-endian 0x00RRGGBB words, which the encoder takes as they are.
+  io::write_png_fast(path, {cairo_image_surface_get_data(s.get()), pic.width, pic.height, 3,
+                            size_t(cairo_image_surface_get_stride(s.get())), true});
 }
 
 }  // namespace wisp::render

@@ -33,17 +33,29 @@ std::string hex(const Rgb& c) {
 // rounded to whole units of 10^-decimals first, so relative path steps (differences of rounded
 // points) add up exactly: no drift along a long path.
 struct Num {
-  int decimals = 3;
-  long long units(double v) const { return std::llround(v * std::pow(10.0, decimals)); }
+  Num(int d = 3) : decimals(d), scale(std::pow(10.0, d)) {}
+  int decimals;
+  double scale;
+  long long units(double v) const { return std::llround(v * scale); }
+  // Appends u units as a decimal number (digits written backwards into a buffer: no allocation).
+  void append_units(std::string& out, long long u) const {
+    char buf[32];
+    char* end = buf + sizeof buf;
+    char* p = end;
+    unsigned long long m = u < 0 ? 0ULL - static_cast<unsigned long long>(u) : u;
+    int fraction = decimals;
+    while (fraction > 0 && m % 10 == 0) m /= 10, --fraction;  // trailing zeros go
+    for (int i = 0; i < fraction; ++i) *--p = char('0' + m % 10), m /= 10;
+    if (fraction > 0) *--p = '.';
+    do *--p = char('0' + m % 10), m /= 10;
+    while (m > 0);
+    if (u < 0) *--p = '-';
+    out.append(p, end);
+  }
   std::string from_units(long long u) const {
-    std::string s = std::to_string(u < 0 ? -u : u);
-    if (decimals > 0) {
-      if (int(s.size()) <= decimals) s.insert(0, std::size_t(decimals + 1 - int(s.size())), '0');
-      s.insert(s.size() - decimals, 1, '.');
-      while (s.back() == '0') s.pop_back();
-      if (s.back() == '.') s.pop_back();
-    }
-    return u < 0 ? '-' + s : s;
+    std::string s;
+    append_units(s, u);
+    return s;
   }
   std::string operator()(double v) const { return from_units(units(v)); }
 };
@@ -56,7 +68,10 @@ class PathData {
   void move(const Eigen::Vector2d& p) {
     const auto [x, y] = units(p);
     if (!out_.empty()) out_ += ' ';
-    out_ += 'M' + num_.from_units(x) + ' ' + num_.from_units(y);
+    out_ += 'M';
+    num_.append_units(out_, x);
+    out_ += ' ';
+    num_.append_units(out_, y);
     cx_ = start_x_ = x, cy_ = start_y_ = y, last_ = 'M';
   }
   void line(const Eigen::Vector2d& p) {
@@ -86,7 +101,9 @@ class PathData {
   }
   void step(const Eigen::Vector2d& p) {
     const auto [x, y] = units(p);
-    out_ += num_.from_units(x - cx_) + ' ' + num_.from_units(y - cy_);
+    num_.append_units(out_, x - cx_);
+    out_ += ' ';
+    num_.append_units(out_, y - cy_);
   }
   const Num& num_;
   std::string out_;
@@ -155,13 +172,13 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, int y1) {
   const size_t n = size_t(img.width) * img.height;
   const int w = x1 - x0, h = y1 - y0;
-  std::vector<std::uint8_t> rgb(3 * size_t(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c)
-        rgb[3 * (size_t(y) * w + x) + c] = static_cast<std::uint8_t>(std::lround(
-            std::clamp(img.planes[c * n + size_t(y + y0) * img.width + x + x0], 0.0f, 1.0f) * 255));
-  const std::vector<std::uint8_t> png = io::encode_png({rgb.data(), w, h, 3, size_t(w) * 3});
+  std::vector<std::uint32_t> rgb(size_t(w) * h);  // 0xffRRGGBB words, encoded as RGB
+  for (int y = 0; y < h; ++y) {
+    const float* r = &img.planes[size_t(y + y0) * img.width + x0];
+    io::pack_rgb(r, r + n, r + 2 * n, &rgb[size_t(y) * w], w);
+  }
+  const std::vector<std::uint8_t> png = io::encode_png(
+      {reinterpret_cast<const std::uint8_t*>(rgb.data()), w, h, 3, size_t(w) * 4, true});
   return "data:image/png;base64," + base64(png);
 }
 
@@ -170,13 +187,11 @@ std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, in
 std::string rgba_data_uri(const std::vector<float>& planes, int width, int height) {
   const size_t n = size_t(width) * height;
   std::vector<std::uint8_t> rgba(4 * n);
-  const auto byte = [](float v) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
-  };
   for (size_t i = 0; i < n; ++i) {
     const float a = planes[3 * n + i];
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = byte(a > 0 ? planes[c * n + i] / a : 0.0f);
-    rgba[4 * i + 3] = byte(a);
+    for (int c = 0; c < 3; ++c)
+      rgba[4 * i + c] = io::unit_byte(a > 0 ? planes[c * n + i] / a : 0.0f);
+    rgba[4 * i + 3] = io::unit_byte(a);
   }
   const std::vector<std::uint8_t> png =
       io::encode_png({rgba.data(), width, height, 4, 4 * n / height});

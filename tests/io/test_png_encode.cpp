@@ -1,0 +1,78 @@
+// io/png_encode: what it writes decodes to the pixels it was given, from packed bytes and from
+// Cairo's 32-bit words; and its float-to-byte conversions round like std::lround.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "io/png_decode.hpp"
+#include "io/png_encode.hpp"
+
+namespace {
+
+// RGB bytes with every value in each channel, and runs of equal pixels (the encoder's matches).
+std::vector<std::uint8_t> pattern(int width, int height) {
+  std::vector<std::uint8_t> rgb(size_t(width) * height * 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+        rgb[(size_t(y) * width + x) * 3 + c] =
+            std::uint8_t(x < width / 2 ? (x * 7 + y * 13 + c * 61) % 256 : y * 5 + c);
+  return rgb;
+}
+
+}  // namespace
+
+TEST_CASE("PNG encoding round-trips RGB bytes and 0xXXRRGGBB words", "[io][png]") {
+  const int w = 61, h = 37;
+  const std::vector<std::uint8_t> rgb = pattern(w, h);
+  std::vector<std::uint32_t> words(size_t(w) * h);
+  for (size_t i = 0; i < words.size(); ++i)
+    words[i] = 0x5a000000u | std::uint32_t(rgb[3 * i]) << 16 | std::uint32_t(rgb[3 * i + 1]) << 8 |
+               rgb[3 * i + 2];
+  const std::vector<std::uint8_t> packed =
+      wisp::io::encode_png({rgb.data(), w, h, 3, size_t(w) * 3});
+  const std::vector<std::uint8_t> from_words = wisp::io::encode_png(
+      {reinterpret_cast<const std::uint8_t*>(words.data()), w, h, 3, size_t(w) * 4, true});
+  for (const auto* bytes : {&packed, &from_words}) {
+    const wisp::io::RgbImage got = wisp::io::decode_png(bytes->data(), bytes->size(), 4096);
+    REQUIRE(got.width == w);
+    REQUIRE(got.height == h);
+    CHECK(got.pixels == rgb);
+  }
+  CHECK_THROWS(wisp::io::encode_png({rgb.data(), w, h, 4, size_t(w) * 4, true}));
+}
+
+TEST_CASE("Channels become bytes as std::lround(clamp(v, 0, 1) * 255)", "[io][png]") {
+  std::vector<float> v = {0.0f,
+                          -0.0f,
+                          -1.0f,
+                          1.0f,
+                          2.0f,
+                          std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(),
+                          0.5f / 255,
+                          1.5f / 255};
+  for (int k = 0; k <= 255; ++k)  // every half, and the floats either side of it
+    for (const float x : {(k + 0.5f) / 255, std::nextafter((k + 0.5f) / 255, 0.0f),
+                          std::nextafter((k + 0.5f) / 255, 1.0f)})
+      v.push_back(x);
+  while (v.size() % 3) v.push_back(0.25f);
+  const int n = int(v.size() / 3);
+  const float *r = v.data(), *g = r + n, *b = g + n;
+  std::vector<std::uint32_t> words(n);
+  wisp::io::pack_rgb(r, g, b, words.data(), n);
+  const auto expected = [](float x) {
+    return std::uint32_t(std::lround(std::clamp(x, 0.0f, 1.0f) * 255));
+  };
+  for (int i = 0; i < n; ++i) {
+    INFO(i);
+    CHECK(wisp::io::unit_byte(r[i]) == expected(r[i]));
+    CHECK(words[i] == (0xff000000u | expected(r[i]) << 16 | expected(g[i]) << 8 | expected(b[i])));
+  }
+  const std::vector<float> nan(5, std::numeric_limits<float>::quiet_NaN());  // vector and tail
+  wisp::io::pack_rgb(nan.data(), nan.data(), nan.data(), words.data(), 5);
+  for (int i = 0; i < 5; ++i) CHECK(words[i] == 0xff000000u);
+  CHECK(wisp::io::unit_byte(nan[0]) == 0);
+}
