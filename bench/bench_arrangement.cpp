@@ -150,7 +150,7 @@ int run_arrangement(const std::vector<std::string>& args) {
       const int n = sizes[s];
       std::fprintf(stderr, "arrangement bench: %s, %d wisps\n", mixed ? "mixed" : "plain", n);
       const sim::ProjectedFrame frame = bench_frame(n, mixed, 1000 + n);
-      std::vector<double> build, sweep, resolve, total, sweep_cpu, total_cpu;
+      std::vector<double> build, cull, sweep, resolve, total, sweep_cpu, total_cpu;
       std::vector<vector::Wisp> wisps;
       vector::WispArrangement arr;
       for (int r = 0; r < repeats; ++r) {
@@ -160,6 +160,7 @@ int run_arrangement(const std::vector<std::string>& args) {
         const auto t1 = diffusion::Clock::now();
         arr = vector::build_arrangement(wisps, options);
         total.push_back(diffusion::ms_since(t1));
+        cull.push_back(arr.stats.cull_ms);
         sweep.push_back(arr.stats.sweep_ms);
         resolve.push_back(arr.stats.resolve_ms);
         sweep_cpu.push_back(arr.stats.sweep_cpu_ms);
@@ -187,15 +188,16 @@ int run_arrangement(const std::vector<std::string>& args) {
       const double ms = median(total);
       std::printf(
           "      {\"wisps\": %d, \"outline_cubics\": %ld, \"segments\": %d, \"vertices\": %d, "
-          "\"edges\": %d, \"faces\": %d, \"intersections\": %d, \"hidden_wisps\": %d,\n"
+          "\"edges\": %d, \"faces\": %d, \"intersections\": %d, \"hidden_wisps\": %d, "
+          "\"cull_ms\": %.2f,\n"
           "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
           "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
           "       \"sweep_cpu_ms\": %.2f, \"arrangement_cpu_ms\": %.2f,\n"
           "       \"exact_bezier\": %s}%s\n",
           n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges, arr.stats.faces,
-          arr.stats.intersections, arr.stats.hidden_wisps, median(build), median(sweep),
-          median(resolve), ms, 1000 * ms / arr.stats.segments, median(sweep_cpu), median(total_cpu),
-          exact.c_str(), s + 1 < sizes.size() ? "," : "");
+          arr.stats.intersections, arr.stats.hidden_wisps, median(cull), median(build),
+          median(sweep), median(resolve), ms, 1000 * ms / arr.stats.segments, median(sweep_cpu),
+          median(total_cpu), exact.c_str(), s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
     std::printf("    ]}%s\n", k + 1 < scenes.size() ? "," : "");
