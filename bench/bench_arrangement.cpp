@@ -176,7 +176,6 @@ int run_arrangement(const std::vector<std::string>& args) {
       if (!exact_gave_up) {
         vector::ArrangementOptions unclipped;
         unclipped.clip_to_view = false;
-        unclipped.cull_hidden = false;  // the exact arrangement has every outline
         const auto plain = vector::build_arrangement(wisps, unclipped);
         exact = exact_in_child(wisps, exact_timeout);
         if (exact.front() == '{')

@@ -50,9 +50,13 @@ struct ArrangementOptions {
   bool keep_faces = false;
   bool front_regions = false;  // fill WispArrangement::front_regions
   // Leave out before the sweep the wisps that other wisps provably hide everywhere
-  // (vector/hidden_wisps.hpp): the outputs stay the same, the faces and edges inside the hair are
-  // fewer. Off: every wisp's outline enters (exact topology checks, counting what is hidden).
-  bool cull_hidden = true;
+  // (vector/hidden_wisps.hpp): no wisp that could be a face's front is dropped, and the faces and
+  // edges inside the hair are fewer (about half the sweep's intersections on the curly scene).
+  // Off by default: where a dropped outline merges faces, the resolver's one depth sample per face
+  // decides the merged face as a whole, and the outlines of hidden wisps had been refining those
+  // decisions; `wisp-bench quality 512` on the curly scene went from p99 11.8 to 14.8 (toon) and
+  // 10.9 to 14.1 (anime) with it on, over the bar (docs/performance.md, "Culling hidden wisps").
+  bool cull_hidden = false;
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
 };

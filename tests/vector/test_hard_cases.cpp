@@ -33,7 +33,6 @@ vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps, bool cli
   o.view = vector::image_rect(512, 512);
   o.clip_to_view = clip;
   o.keep_faces = true;
-  o.cull_hidden = false;  // every outline enters: the cases check the faces of hidden wisps too
   return vector::build_arrangement(wisps, o);
 }
 

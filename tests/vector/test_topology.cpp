@@ -86,7 +86,6 @@ TEST_CASE("face count equals the exact Bezier arrangement's on small scenes",
   style.width = 0.05;
   vector::ArrangementOptions o;
   o.clip_to_view = false;
-  o.cull_hidden = false;  // the exact arrangement has every outline
   struct Scene {
     int count;
     std::uint32_t seed;
