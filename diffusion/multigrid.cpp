@@ -714,30 +714,21 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
     const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
     const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
     const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
-    if (!a.nine_point) {
-      for (int c = 0; c < NC; ++c) {
-        const float* ec = e[c];
-        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-        t = _mm512_fmadd_ps(ps, load(ec + s), t);
-        t = _mm512_fmadd_ps(pn, load(ec - s), t);
-        _mm512_mask_storeu_ps(e[c] + x, in & parity,
-                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
-      }
-      continue;
-    }
-    const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
+    __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
+    if (a.nine_point) pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
     for (int c = 0; c < NC; ++c) {
       const float* ec = e[c];
       __m512 t = _mm512_mul_ps(pw, load(ec - 1));
       t = _mm512_fmadd_ps(pe, load(ec + 1), t);
       t = _mm512_fmadd_ps(ps, load(ec + s), t);
       t = _mm512_fmadd_ps(pn, load(ec - s), t);
-      __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
-      u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
-      u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
-      u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
-      t = _mm512_add_ps(t, u);
+      if (a.nine_point) {
+        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+        t = _mm512_add_ps(t, u);
+      }
       _mm512_mask_storeu_ps(e[c] + x, in & parity, _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
     }
   }
