@@ -3,8 +3,8 @@
 // of `wisp render` below its command line.
 //
 // Determinism and resuming. Each frame's solve is warm-started from the previous frame's answer,
-// but only inside fixed blocks of frames (render.warm_start_block, counted from frame 0): blocks
-// are independent, so they render in parallel and the pixels do not depend on the thread count.
+// but only inside fixed blocks of frames (render.warm_start_block, counted from frame 0), and
+// frames are shaded in order, so the pixels do not depend on the thread count.
 // A frame is written to a temporary name and renamed; frames whose PNG and SVG both exist are
 // skipped (unless forced), and when a block is resumed in its middle, its earlier frames are
 // solved again in memory so that the warm starts, and therefore the pixels, are the same as in
@@ -80,13 +80,14 @@ struct FrameFiles {
   bool masks = false;  // also write mask_NNNN.png
 };
 
-// Renders the planned frames into files.folder, blocks in parallel (TBB), each frame as soon as
-// it is ready (SceneFrames::wait_for: frames may still be simulated), while a writer thread
-// (frame_writer.hpp) draws and writes the finished frames; a failed write ends the run with its
-// error. `written(count)` is called after each frame written, one call at a time (for a progress
-// bar). Each frame's stats
-// record (render_stats.hpp) is kept on disk beside it (.stats/frame_NNNN.json), so a resumed run
-// still reports every frame. Returns the records of the frames written, in frame order.
+// Renders the planned frames into files.folder in a pipeline (TBB): the geometry of any frame
+// (render_geometry) on a free core as soon as the frame is ready (SceneFrames::wait_for: frames
+// may still be simulated), the shading (render_shading) one frame at a time in order, while a
+// writer thread (frame_writer.hpp) draws and writes the finished frames; a failed write ends the
+// run with its error. `written(count)` is called after each frame written, one call at a time
+// (for a progress bar). Each frame's stats record (render_stats.hpp) is kept on disk beside it
+// (.stats/frame_NNNN.json), so a resumed run still reports every frame. Returns the records of
+// the frames written, in frame order.
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
                                          const RangePlan& plan, const FrameFiles& files,
                                          const std::function<void(int count)>& written);
