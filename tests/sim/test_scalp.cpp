@@ -16,6 +16,22 @@ using Eigen::Vector3d;
 
 namespace {
 
+// The head alone (no neck or torso) as a triangle mesh of `slices` x `stacks`, and a square
+// camera of `side` pixels looking at it from the default eye.
+BodyModel head_model(const HeadGeometry& head, int slices, int stacks) {
+  BodyParams b = body_params(HeadParams{});
+  b.neck = b.torso = false;
+  b.slices = slices;
+  b.stacks = stacks;
+  return BodyModel(head, b);
+}
+
+Camera square_camera(int side) {
+  CameraParams cp;
+  cp.width = cp.height = side;
+  return Camera::look_at(cp);
+}
+
 // Roots spread evenly (a Fibonacci spiral) over the cap of a sphere of radius `r` within
 // `cap_deg` of +y.
 std::vector<Vector3d> cap_roots(int count, double r, double cap_deg) {
@@ -67,16 +83,8 @@ TEST_CASE("scalp coverage: 1 amid the roots, 1/2 at their edge, 0 beyond, at any
 TEST_CASE("eye rays against triangles meet the head where the analytic ellipsoid is",
           "[sim][scalp]") {
   HeadGeometry head;
-  const BodyModel model(head, [] {
-    BodyParams b = body_params(HeadParams{});
-    b.neck = b.torso = false;
-    b.slices = 96;
-    b.stacks = 48;
-    return b;
-  }());
-  CameraParams cp;
-  cp.width = cp.height = 200;
-  const Camera camera = Camera::look_at(cp);
+  const BodyModel model = head_model(head, 96, 48);
+  const Camera camera = square_camera(200);
   const SurfaceRays rays(model.head_triangles(HeadPose{}), camera);
   int hits = 0;
   for (int y = 0; y < 200; y += 7)
@@ -143,16 +151,8 @@ TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden b
 TEST_CASE("the depth bound over a box holds at every point of it, and is near where it is known",
           "[sim][scalp]") {
   HeadGeometry head;
-  const BodyModel model(head, [] {
-    BodyParams b = body_params(HeadParams{});
-    b.neck = b.torso = false;
-    b.slices = 48;
-    b.stacks = 24;
-    return b;
-  }());
-  CameraParams cp;
-  cp.width = cp.height = 200;
-  const Camera camera = Camera::look_at(cp);
+  const BodyModel model = head_model(head, 48, 24);
+  const Camera camera = square_camera(200);
   const SurfaceRays plain(model.head_triangles(HeadPose{}), camera);
   const SurfaceRays rays(model.head_triangles(HeadPose{}), camera, true);
   CHECK(std::isinf(plain.max_depth(Eigen::AlignedBox2d(Vector2d(98, 98), Vector2d(102, 102)))));
