@@ -4,6 +4,7 @@
 
 #include "apps/render/body_occluders.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -178,10 +179,12 @@ std::unique_ptr<SceneFrames> stream_scene_frames(io::Scene scene,
   // The slots are filled in order and published; the frames never move (out is on the heap)
   // and a frame is read only after its publication.
   SceneFrames* frames = out.get();
-  out->feed->start([frames, source](FrameFeed& feed) {
+  const int limit = options.frame_limit > 0 ? std::min(count, options.frame_limit) : count;
+  out->feed->start([frames, source, limit](FrameFeed& feed) {
     int k = 0;
     const auto take = [&](sim::StrandFrame f) {
       if (k >= frames->frame_count()) throw std::logic_error("more frames than announced");
+      if (k == limit) throw FeedStopped{};  // the rest is not needed
       frames->projected[k] = source->projector->project(f);
       frames->anim.frames[k] = std::move(f);
       if (k == 0) add_scalp(*frames);

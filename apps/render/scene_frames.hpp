@@ -37,6 +37,9 @@ struct SceneFramesOptions {
   int width = 0, height = 0;   // > 0: render at this size instead of the camera's
   // Called while simulating (done, total), as sim::simulate's progress.
   std::function<void(int done, int total)> sim_progress;
+  // > 0: frames from this one on are not needed, and stream_scene_frames' feed stops before them
+  // (a render of frames 0:24 of a long animation neither simulates nor projects the rest).
+  int frame_limit = 0;
 };
 
 // Frames made one after another on a thread of their own (stream_scene_frames): the animation

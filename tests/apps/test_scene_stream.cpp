@@ -36,3 +36,19 @@ TEST_CASE("streamed frames are the frames loaded whole", "[render]") {
     if (k == 0) CHECK(bool(streamed->scalp) == bool(whole.scalp));  // made with frame 0
   }
 }
+
+TEST_CASE("a streamed render's frame limit stops the feed before the frames not needed",
+          "[render]") {
+  const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
+  render::SceneFramesOptions o;
+  o.anim = wisp::test::simulated(scene);
+  o.width = o.height = 48;
+  o.frame_limit = 3;
+  const auto streamed = render::stream_scene_frames(wisp::io::load_scene(scene), o);
+  REQUIRE(streamed->frame_count() > 3);  // the animation's length, as without the limit
+  streamed->wait_for(2);
+  CHECK(!streamed->projected[2].strands.empty());
+  // Frame 3 is never made: a wait for it ends with an error instead of hanging.
+  CHECK_THROWS_WITH(streamed->wait_for(3), Catch::Contains("never made"));
+  CHECK(streamed->projected[3].strands.empty());
+}
