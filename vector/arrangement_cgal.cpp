@@ -2,6 +2,8 @@
 // (CGAL::insert over all segments), then a copy of the DCEL into PlanarMap's index arrays.
 #include <CGAL/number_utils.h>
 
+#include <cmath>
+
 #include "vector/arrangement_cgal.hpp"
 #include "vector/planar_map.hpp"
 
@@ -30,12 +32,20 @@ double to_double(const cgal::Point& p, int axis) {
 
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments) {
   using namespace cgal;
+  // Each segment from two points, not from a Segment_2 (whose two vertex() calls are two more
+  // nodes of the lazy kernel's DAG), and an outline's consecutive segments share the point where
+  // they meet: the sweep's cost is mostly allocation, and this is half the input's nodes.
   std::vector<Traits::Curve_2> curves;
   curves.reserve(segments.size());
+  Point end;  // the end of the last segment added, at `end_at`
+  Eigen::Vector2d end_at(NAN, NAN);
   for (int i = 0; i < int(segments.size()); ++i) {
     const OutlineSegment& s = segments[i];
     if (s.a == s.b) continue;
-    curves.emplace_back(Kernel::Segment_2(Point(s.a.x(), s.a.y()), Point(s.b.x(), s.b.y())), i);
+    const Point a = s.a == end_at ? end : Point(s.a.x(), s.a.y());
+    end = Point(s.b.x(), s.b.y());
+    end_at = s.b;
+    curves.emplace_back(SegmentTraits::Curve_2(a, end), i);
   }
   Arrangement arr;
   CGAL::insert(arr, curves.begin(), curves.end());
