@@ -3,8 +3,10 @@
 #include "io/video_file.hpp"
 
 #include <dlfcn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <stdexcept>
 
@@ -113,9 +115,10 @@ std::string write_video(const std::filesystem::path& path,
   return used;
 }
 
-void check_video(const std::filesystem::path& path, int width, int height, double fps) {
-  if (!(fps > 0 && fps <= 1000))
-    throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
+namespace {
+
+// check_video's probe, in whatever process runs it.
+void probe_video(const std::filesystem::path& path, int width, int height, double fps) {
   const VideoModule& m = video_module(path);
   namespace fs = std::filesystem;
   const fs::path probe =
@@ -132,6 +135,64 @@ void check_video(const std::filesystem::path& path, int width, int height, doubl
                            std::to_string(height) +
                            " video (tried avc1 and mp4v); choose another size, or set "
                            "render.video to false");
+}
+
+}  // namespace
+
+void check_video(const std::filesystem::path& path, int width, int height, double fps) {
+  if (!(fps > 0 && fps <= 1000))
+    throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
+  // The probe runs in a child process: once loaded, the video module (OpenCV, FFmpeg, x264) stays
+  // resident, about 60 MB, and a render needs it only for its last step. The child reports an
+  // error as one byte, 'M' (VideoModuleError) or 'E', then the message.
+  int fds[2];
+  if (pipe(fds) != 0) {
+    probe_video(path, width, height, fps);  // no pipe: probe here, at the cost of the memory
+    return;
+  }
+  const pid_t child = fork();
+  if (child < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    probe_video(path, width, height, fps);
+    return;
+  }
+  if (child == 0) {
+    close(fds[0]);
+    std::string report;
+    try {
+      probe_video(path, width, height, fps);
+    } catch (const VideoModuleError& e) {
+      report = std::string("M") + e.what();
+    } catch (const std::exception& e) {
+      report = std::string("E") + e.what();
+    }
+    for (std::size_t at = 0; at < report.size();) {
+      const ssize_t n = write(fds[1], report.data() + at, report.size() - at);
+      if (n <= 0) break;
+      at += std::size_t(n);
+    }
+    _exit(0);  // no atexit handlers or static destructors of the parent's state
+  }
+  close(fds[1]);
+  std::string report;
+  char buf[512];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) != 0;) {
+    if (n > 0)
+      report.append(buf, std::size_t(n));
+    else if (errno != EINTR)
+      break;
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status))
+    throw std::runtime_error(path.string() + ": the video probe for a " + std::to_string(width) +
+                             "x" + std::to_string(height) + " video crashed");
+  if (report.empty()) return;
+  if (report[0] == 'M') throw VideoModuleError(report.substr(1));
+  throw std::runtime_error(report.substr(1));
 }
 
 int count_video_frames(const std::filesystem::path& path) {

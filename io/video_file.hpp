@@ -27,7 +27,8 @@ std::string write_video(const std::filesystem::path& path,
                         const std::vector<std::filesystem::path>& frames, double fps);
 
 // Checks, before any frame is rendered, that a width x height video at `fps` can be written:
-// encodes one blank frame to a temporary file outside the output folder and reads it back.
+// encodes one blank frame to a temporary file outside the output folder and reads it back, in a
+// child process, so that the caller does not keep the video module loaded (about 60 MB).
 // Throws std::runtime_error "<path>: ..." when it cannot (sizes the codecs refuse, bad fps).
 void check_video(const std::filesystem::path& path, int width, int height, double fps);
 

@@ -99,3 +99,25 @@ TEST_CASE("video errors name the file and leave nothing behind", "[io][video]") 
   CHECK(wisp::io::count_video_frames(dir / "missing.mp4") == -1);
   fs::remove_all(dir);
 }
+
+// Whether this process has the video module loaded.
+bool video_module_loaded() {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find("wisp-video.so") != std::string::npos) return true;
+  return false;
+}
+
+TEST_CASE("the video check probes in a child process and reports its answer", "[io][video]") {
+  const fs::path dir = temp_dir();
+  const bool loaded = video_module_loaded();  // ctest runs each case alone: false there
+  CHECK_NOTHROW(wisp::io::check_video(dir / "v.mp4", 64, 48, 24));
+  CHECK(video_module_loaded() == loaded);
+  // A size no codec takes: the child's error comes back as the parent's, naming the video.
+  CHECK_THROWS_WITH(wisp::io::check_video(dir / "v.mp4", 0, 0, 24),
+                    Catch::Contains("v.mp4") && Catch::Contains("cannot encode a 0x0 video"));
+  CHECK_THROWS_WITH(wisp::io::check_video(dir / "v.mp4", 64, 48, 0), Catch::Contains("fps"));
+  CHECK(!fs::exists(dir / "v.mp4"));
+  fs::remove_all(dir);
+}
