@@ -1299,9 +1299,12 @@ double Multigrid<NC>::solve_correction(double tolerance, SolveStats& st) {
       st.error_estimates.push_back(estimate);
     }
     observe(nullptr, st);
-    // A cycle that gains less than 3x meets a mode the coarse grids cannot represent: from
-    // here conjugate gradients, with the cycle as preconditioner, take over.
-    if (options_.krylov && rel > 0.3 * prev && !done())
+    // A cycle that gains less than 2x meets a mode the coarse grids cannot represent: from
+    // here conjugate gradients, with the cycle as preconditioner, take over. Not sooner: CG's
+    // stopping rule needs four steps before its first estimate, so cycles that still gain 2-3x
+    // stop earlier by themselves (frame 1 of the default scene at 1024^2: 0.36 per cycle, 5
+    // cycles instead of 4 cycles and 5 CG steps).
+    if (options_.krylov && rel > 0.5 * prev && !done())
       return conjugate_gradient(rel, tolerance, st);
     if (rel > 0.9 * prev && rel < 1e-4) break;  // float32 floor
   }
