@@ -56,7 +56,7 @@ struct SolverOptions {
   bool full_multigrid = true;
   // Plain V-cycles converge at the model-problem rate on ordinary drawings. Where barriers nearly
   // seal off a region, a few modes escape the coarse grids and the cycles slow down; as soon as
-  // one cycle gains less than 3x, conjugate gradients take over with the (symmetric) cycle as
+  // one cycle gains less than 2x, conjugate gradients take over with the (symmetric) cycle as
   // preconditioner, which removes those modes in a few iterations. Off: V-cycles only.
   bool krylov = true;
   int max_levels = 0;  // 0: coarsen down to <= 64 points; otherwise at most this many levels
