@@ -1496,27 +1496,53 @@ namespace {
 // of the most solves ever in flight at once, not one per thread: `wisp render` shades one frame
 // at a time, on whichever thread, and its consecutive frames meet one workspace (whose next solve
 // of the same size rebuilds only what changed).
+struct WorkspacePool {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<Workspace>> idle;
+};
+template <int NC>
+WorkspacePool& workspace_pool() {
+  static WorkspacePool pool;
+  return pool;
+}
+
 template <int NC>
 Solution solve_in_workspace(const Problem& problem, const SolverOptions& options,
                             const std::vector<float>* initial_guess) {
-  static std::mutex mutex;
-  static std::vector<std::unique_ptr<Workspace>> idle;
+  WorkspacePool& pool = workspace_pool<NC>();
   std::unique_ptr<Workspace> ws;
   {
-    const std::lock_guard<std::mutex> lock(mutex);
-    if (!idle.empty()) {
-      ws = std::move(idle.back());
-      idle.pop_back();
+    const std::lock_guard<std::mutex> lock(pool.mutex);
+    if (!pool.idle.empty()) {
+      ws = std::move(pool.idle.back());
+      pool.idle.pop_back();
     }
   }
   if (!ws) ws = std::make_unique<Workspace>();
   Solution solution = Multigrid<NC>(problem, options, *ws).run(initial_guess);
-  const std::lock_guard<std::mutex> lock(mutex);
-  idle.push_back(std::move(ws));  // (not after an exception: that workspace is dropped)
+  const std::lock_guard<std::mutex> lock(pool.mutex);
+  pool.idle.push_back(std::move(ws));  // (not after an exception: that workspace is dropped)
   return solution;
 }
 
+template <int NC>
+void release_pool() {
+  WorkspacePool& pool = workspace_pool<NC>();
+  std::vector<std::unique_ptr<Workspace>> idle;
+  {
+    const std::lock_guard<std::mutex> lock(pool.mutex);
+    idle.swap(pool.idle);
+  }
+}
+
 }  // namespace
+
+void release_solver_workspaces() {
+  release_pool<1>();
+  release_pool<2>();
+  release_pool<3>();
+  release_pool<4>();
+}
 
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
                          const std::vector<float>* initial_guess) {

@@ -19,6 +19,7 @@
 
 #include "apps/render/frame_writer.hpp"
 #include "apps/render/render_stats.hpp"
+#include "diffusion/multigrid.hpp"
 #include "diffusion/timer.hpp"
 #include "io/atomic_file.hpp"
 #include "io/contact_sheet.hpp"
@@ -251,6 +252,8 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                 });
               }));
   writer.finish();
+  // The frames are done: the previews that follow (the video encoder) need the memory.
+  diffusion::release_solver_workspaces();
   std::vector<nlohmann::json> out;
   for (nlohmann::json& s : stats)
     if (!s.is_null()) out.push_back(std::move(s));

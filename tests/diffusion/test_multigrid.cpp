@@ -289,6 +289,9 @@ TEST_CASE("a solve after another of the same size rebuilds what changed, to the 
   CHECK(b_after_a.planes == b_fresh.planes);
   CHECK(a_after_b.stats.cycles == a_fresh.stats.cycles);
   CHECK(a_after_b.planes == a_fresh.planes);
+  // Released workspaces (`wisp render` before its previews): the next solve builds a new one.
+  release_solver_workspaces();
+  CHECK(solve_multigrid(b).planes == b_fresh.planes);
 }
 
 TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewer", "[multigrid]") {
