@@ -14,7 +14,7 @@ using Eigen::Vector3d;
 
 SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
                          bool with_folds)
-    : world_(std::move(triangles)), camera_(camera) {
+    : world_(std::move(triangles)), camera_(camera), with_folds_(with_folds) {
   box_.setEmpty();
   pixel_.reserve(world_.size());
   for (const Eigen::Matrix3d& t : world_) {
@@ -25,7 +25,6 @@ SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& c
     }
     pixel_.push_back(px);
   }
-  if (with_folds) find_folds();
   cells_ = std::clamp(int(std::sqrt(double(world_.size()))), 1, 64);
   grid_.assign(size_t(cells_) * cells_, {});
   if (box_.isEmpty()) return;
@@ -42,7 +41,7 @@ SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& c
 
 // Fold edges: on the mesh's border, shared by more than two triangles, or with both triangles on
 // one side of the edge in the picture. Elsewhere the picture is covered on both sides of an edge.
-void SurfaceRays::find_folds() {
+void SurfaceRays::find_folds() const {
   struct Use {
     std::array<double, 6> key;  // the edge's corners, lower first
     int use;                    // 3 * triangle + edge
@@ -140,7 +139,8 @@ bool meets(const Vector2d& a, const Vector2d& b, const Eigen::AlignedBox2d& box)
 // h(p) = n.(a - eye) |d(p)| / n.d(p); over the box |d| (convex) is largest and n.d (affine)
 // smallest at a corner, which bounds h when n.d > 0 at every corner.
 double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
-  if (fold_.empty() || box_.isEmpty() || box.isEmpty() || !box_.contains(box)) return INFINITY;
+  if (!with_folds_ || box_.isEmpty() || box.isEmpty() || !box_.contains(box)) return INFINITY;
+  std::call_once(folds_found_, [this] { find_folds(); });
   const int start = first_hit(box.center()).first;
   if (start < 0) return INFINITY;
   const Camera& c = camera_;
