@@ -54,7 +54,9 @@ class SurfaceRays {
   Camera camera_;
   Eigen::AlignedBox2d box_;
   int cells_ = 1;
-  std::vector<std::vector<int>> grid_;
+  // The triangles meeting each cell of the grid, in order: cell c's are
+  // binned_[first_[c]] to binned_[first_[c + 1]] (one array, not a vector per cell).
+  std::vector<int> first_, binned_;
   bool with_folds_ = false;
   // Filled once, by the first max_depth (which may be called from several threads).
   mutable std::once_flag folds_found_;
