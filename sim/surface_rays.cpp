@@ -14,7 +14,7 @@ using Eigen::Vector3d;
 
 SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
                          bool with_folds)
-    : world_(std::move(triangles)), camera_(camera) {
+    : world_(std::move(triangles)), camera_(camera), with_folds_(with_folds) {
   box_.setEmpty();
   pixel_.reserve(world_.size());
   for (const Eigen::Matrix3d& t : world_) {
@@ -25,24 +25,31 @@ SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& c
     }
     pixel_.push_back(px);
   }
-  if (with_folds) find_folds();
   cells_ = std::clamp(int(std::sqrt(double(world_.size()))), 1, 64);
-  grid_.assign(size_t(cells_) * cells_, {});
+  first_.assign(size_t(cells_) * cells_ + 1, 0);
   if (box_.isEmpty()) return;
-  for (int t = 0; t < int(pixel_.size()); ++t) {
-    Eigen::AlignedBox2d b;
-    for (const Vector2d& q : pixel_[t]) b.extend(q);
-    for (int y = cell(b.min().y(), box_.min().y(), box_.max().y());
-         y <= cell(b.max().y(), box_.min().y(), box_.max().y()); ++y)
-      for (int x = cell(b.min().x(), box_.min().x(), box_.max().x());
-           x <= cell(b.max().x(), box_.min().x(), box_.max().x()); ++x)
-        grid_[size_t(y) * cells_ + x].push_back(t);
-  }
+  // Counted, then filled: each triangle in the cells its pixel box meets.
+  const auto bin = [&](const auto& f) {
+    for (int t = 0; t < int(pixel_.size()); ++t) {
+      Eigen::AlignedBox2d b;
+      for (const Vector2d& q : pixel_[t]) b.extend(q);
+      for (int y = cell(b.min().y(), box_.min().y(), box_.max().y());
+           y <= cell(b.max().y(), box_.min().y(), box_.max().y()); ++y)
+        for (int x = cell(b.min().x(), box_.min().x(), box_.max().x());
+             x <= cell(b.max().x(), box_.min().x(), box_.max().x()); ++x)
+          f(size_t(y) * cells_ + x, t);
+    }
+  };
+  bin([&](size_t c, int) { ++first_[c + 1]; });
+  for (size_t c = 1; c < first_.size(); ++c) first_[c] += first_[c - 1];
+  binned_.resize(size_t(first_.back()));
+  std::vector<int> fill(first_.begin(), first_.end() - 1);
+  bin([&](size_t c, int t) { binned_[size_t(fill[c]++)] = t; });
 }
 
 // Fold edges: on the mesh's border, shared by more than two triangles, or with both triangles on
 // one side of the edge in the picture. Elsewhere the picture is covered on both sides of an edge.
-void SurfaceRays::find_folds() {
+void SurfaceRays::find_folds() const {
   struct Use {
     std::array<double, 6> key;  // the edge's corners, lower first
     int use;                    // 3 * triangle + edge
@@ -102,9 +109,10 @@ std::pair<int, double> SurfaceRays::first_hit(const Vector2d& p) const {
   const Vector3d dir = ray(p);
   double best = INFINITY;
   int hit = -1;
-  const auto& bucket = grid_[size_t(cell(p.y(), box_.min().y(), box_.max().y())) * cells_ +
-                             cell(p.x(), box_.min().x(), box_.max().x())];
-  for (int t : bucket) {
+  const size_t c = size_t(cell(p.y(), box_.min().y(), box_.max().y())) * cells_ +
+                   cell(p.x(), box_.min().x(), box_.max().x());
+  for (int k = first_[c]; k < first_[c + 1]; ++k) {
+    const int t = binned_[size_t(k)];
     const double d =
         ray_triangle(camera_.eye, dir, world_[t].col(0), world_[t].col(1), world_[t].col(2));
     if (d > 0 && d < best) best = d, hit = t;
@@ -140,7 +148,8 @@ bool meets(const Vector2d& a, const Vector2d& b, const Eigen::AlignedBox2d& box)
 // h(p) = n.(a - eye) |d(p)| / n.d(p); over the box |d| (convex) is largest and n.d (affine)
 // smallest at a corner, which bounds h when n.d > 0 at every corner.
 double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
-  if (fold_.empty() || box_.isEmpty() || box.isEmpty() || !box_.contains(box)) return INFINITY;
+  if (!with_folds_ || box_.isEmpty() || box.isEmpty() || !box_.contains(box)) return INFINITY;
+  std::call_once(folds_found_, [this] { find_folds(); });
   const int start = first_hit(box.center()).first;
   if (start < 0) return INFINITY;
   const Camera& c = camera_;
@@ -166,8 +175,8 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
   const int y1 = cell(box.max().y(), box_.min().y(), box_.max().y());
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x)
-      for (int t : grid_[size_t(y) * cells_ + x])
-        for (int e = 0; e < 3; ++e)
+      for (int k = first_[size_t(y) * cells_ + x]; k < first_[size_t(y) * cells_ + x + 1]; ++k)
+        for (int t = binned_[size_t(k)], e = 0; e < 3; ++e)
           if (fold_[t][e] && meets(pixel_[t][e], pixel_[t][(e + 1) % 3], box)) return INFINITY;
   // The layer hit first through the centre covers the box: its triangles meeting the box, found
   // across shared edges from the centre's, bound the depth (the nearest hit is no farther).

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -17,10 +18,13 @@ namespace wisp::sim {
 
 class SurfaceRays {
  public:
-  // `triangles`: world space, the columns are the corners. `with_folds` finds the edges where
-  // the surface's picture folds, which max_depth needs (it is +infinity without them).
+  // `triangles`: world space, the columns are the corners. `with_folds`: max_depth is wanted,
+  // which needs the edges where the surface's picture folds (it is +infinity without them); they
+  // are found at its first call, so a surface whose bound nobody asks for does not pay for them.
   SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
               bool with_folds = false);
+  SurfaceRays(const SurfaceRays&) = delete;
+  SurfaceRays& operator=(const SurfaceRays&) = delete;
 
   // Distance from the eye along the ray through pixel p to the nearest triangle; +infinity on a
   // miss.
@@ -43,16 +47,21 @@ class SurfaceRays {
  private:
   int cell(double v, double lo, double hi) const;
   std::pair<int, double> first_hit(const Eigen::Vector2d& p) const;  // triangle, distance
-  void find_folds();
+  void find_folds() const;
 
   std::vector<Eigen::Matrix3d> world_;
   std::vector<std::array<Eigen::Vector2d, 3>> pixel_;
   Camera camera_;
   Eigen::AlignedBox2d box_;
   int cells_ = 1;
-  std::vector<std::vector<int>> grid_;
-  std::vector<std::array<bool, 3>> fold_;      // per triangle edge (corner e to e + 1): a fold
-  std::vector<std::array<int, 3>> neighbour_;  // the triangle across it, -1 if none
+  // The triangles meeting each cell of the grid, in order: cell c's are
+  // binned_[first_[c]] to binned_[first_[c + 1]] (one array, not a vector per cell).
+  std::vector<int> first_, binned_;
+  bool with_folds_ = false;
+  // Filled once, by the first max_depth (which may be called from several threads).
+  mutable std::once_flag folds_found_;
+  mutable std::vector<std::array<bool, 3>> fold_;  // per triangle edge (corner e to e + 1): a fold
+  mutable std::vector<std::array<int, 3>> neighbour_;  // the triangle across it, -1 if none
 };
 
 }  // namespace wisp::sim

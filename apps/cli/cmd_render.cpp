@@ -78,14 +78,14 @@ render::FrameRange frame_range(std::pair<int, int> asked, int frame_count) {
 
 // The animation (simulated now, or read back) and its frames projected in order on a thread of
 // their own, each ready for rendering as soon as it is made (render::stream_scene_frames). Scenes
-// with fur are simulated whole first, with a progress bar.
-// `frames_end`: the end of --frames, or <= 0 for all.
+// with fur are simulated whole first, with a progress bar. `needed` > 0: no frame from there on
+// is rendered (SceneFramesOptions::needed).
 std::unique_ptr<render::SceneFrames> simulate_and_project(io::Scene scene, const RenderArgs& a,
-                                                          std::pair<int, int> size,
-                                                          int frames_end) {
+                                                          std::pair<int, int> size, int needed) {
   std::unique_ptr<render::ProgressBar> bar;
   render::SceneFramesOptions load;
   load.anim = a.anim;
+  load.needed = needed;
   std::tie(load.width, load.height) = size;
   load.sim_progress = [&](int done, int total) {
     if (a.quiet) return;
@@ -172,7 +172,7 @@ void run_render(const RenderArgs& a) {
 
   auto t0 = Clock::now();
   const std::unique_ptr<render::SceneFrames> loaded =
-      simulate_and_project(std::move(scene), a, size, asked.second);
+      simulate_and_project(std::move(scene), a, size, std::max(0, asked.second));
   const render::SceneFrames& frames = *loaded;
   render::RunTimes ms;
   ms.simulate_and_project = ms_since(t0);

@@ -50,8 +50,16 @@ std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const s
     // A surface reaching behind the eye has no meaningful silhouette; it is left out.
     if (behind || surface.triangles.empty()) continue;
     auto s = std::make_shared<const sim::SurfaceRays>(sim::world_triangles(surface), camera, true);
+    // Each vertex once (a vertex is a corner of about six triangles): the hull's sort is the cost.
+    std::vector<char> taken(surface.vertices.size(), 0);
     std::vector<Vector2d> points;
-    for (const auto& px : s->pixels()) points.insert(points.end(), px.begin(), px.end());
+    points.reserve(surface.vertices.size());
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+      for (int c = 0; c < 3; ++c)
+        if (!taken[surface.triangles[t][c]]) {
+          taken[surface.triangles[t][c]] = 1;
+          points.push_back(s->pixels()[t][c]);
+        }
     vector::Occluder o;
     o.ring = convex_hull(points);
     if (o.ring.size() < 3) continue;

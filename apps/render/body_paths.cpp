@@ -3,8 +3,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
 #include <unordered_map>
 
 #include "vector/catmull_rom.hpp"
@@ -45,6 +45,14 @@ struct Corner {
   Vector3d w;
 };
 
+// A piece of a triangle while it is clipped, on the stack: each of the three clips at most
+// doubles the corners (a corner and a crossing per edge), so 3 * 2^3 always fit.
+struct Polygon {
+  std::array<Corner, 24> corner;
+  int size = 0;
+  void push_back(const Corner& c) { corner[size++] = c; }
+};
+
 // The pieces of one surface in the image orientation of front faces, as loops of corner indices
 // (corners shared by identity): lit (terminator >= 0), band (between the terminator and the
 // offset), deep (shadow beyond the offset).
@@ -77,6 +85,7 @@ class Pieces {
       // an edge, and a corner is on one side of a level or on it.
       for (int l = 0; l < kLevels; ++l) g_[l][v] = std::abs(value[l]) < 1e-9 ? 1e-9 : value[l];
     }
+    vertex_index_.assign(n, -1);
     for (std::size_t t = 0; t < s.triangles.size(); ++t) split(int(t));
   }
 
@@ -88,18 +97,23 @@ class Pieces {
  private:
   const sim::ProjectedSurface& s_;
   std::vector<double> g_[kLevels];
+  // Corner indices by identity: mesh vertices (most corners) in an array, crossings in a map.
+  std::vector<int> vertex_index_;
   std::unordered_map<Key, int, KeyHash> index_;
   int tri_ = 0;
 
   int id(const Corner& c, const Vector2d& p) {
-    auto [it, fresh] = index_.emplace(c.key, int(point.size()));
-    if (fresh) {
+    const bool vertex = c.key.a >= 0 && c.key.b < 0;
+    int& slot = vertex ? vertex_index_[c.key.a] : index_.emplace(c.key, -1).first->second;
+    if (slot < 0) {
+      slot = int(point.size());
       point.push_back(p);
       on.push_back(c.on);
       key.push_back(c.key);
     }
-    return it->second;
+    return slot;
   }
+  int index(const Key& k) const { return k.a >= 0 && k.b < 0 ? vertex_index_[k.a] : index_.at(k); }
 
   const Eigen::Vector3i& corners() const { return s_.triangles[tri_]; }
   // -1 below, +1 above level l, 0 on it.
@@ -141,11 +155,11 @@ class Pieces {
   }
 
   // Sutherland-Hodgman: the part of `poly` on side `keep` of level l (corners on it are kept).
-  std::vector<Corner> clip(const std::vector<Corner>& poly, int l, int keep) {
-    std::vector<Corner> out;
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const Corner& u = poly[i];
-      const Corner& v = poly[(i + 1) % poly.size()];
+  Polygon clip(const Polygon& poly, int l, int keep) {
+    Polygon out;
+    for (int i = 0; i < poly.size; ++i) {
+      const Corner& u = poly.corner[i];
+      const Corner& v = poly.corner[(i + 1) % poly.size];
       const int su = side(l, u), sv = side(l, v);
       if (su != -keep) out.push_back(u);
       if (su * sv < 0) out.push_back(crossing(l, u, v));
@@ -153,67 +167,102 @@ class Pieces {
     return out;
   }
 
-  void keep(const std::vector<Corner>& piece, std::vector<std::vector<int>>& out) {
-    if (piece.size() < 3) return;
-    std::vector<int> loop;
-    for (const Corner& c : piece) loop.push_back(index_.at(c.key));
+  void keep(const Polygon& piece, std::vector<std::vector<int>>& out) {
+    if (piece.size < 3) return;
+    std::vector<int> loop(piece.size);
+    for (int i = 0; i < piece.size; ++i) loop[i] = index(piece.corner[i].key);
     out.push_back(std::move(loop));
   }
 
   void split(int t) {
     tri_ = t;
     const Eigen::Vector3i& tri = corners();
-    std::vector<Corner> poly;
+    Polygon poly;
     for (int k = 0; k < 3; ++k) {
       Corner c{Key{tri[k], -1, 0}, 0, Vector3d::Unit(k)};
       id(c, s_.pixel[tri[k]]);
       poly.push_back(c);
     }
     poly = clip(poly, kCut, 1);
-    if (poly.size() < 3) return;
+    if (poly.size < 3) return;
     keep(clip(poly, kTerminator, 1), lit);
-    const std::vector<Corner> shadow = clip(poly, kTerminator, -1);
-    if (shadow.size() < 3) return;
+    const Polygon shadow = clip(poly, kTerminator, -1);
+    if (shadow.size < 3) return;
     keep(clip(shadow, kOffset, 1), band);
     keep(clip(shadow, kOffset, -1), deep);
   }
 };
 
 // The outline of a union of same-turning pieces: their edges, minus every edge that another
-// piece traverses the other way, chained into loops of corner indices.
-std::vector<std::vector<int>> outline(
-    const std::vector<const std::vector<std::vector<int>>*>& sets) {
-  std::map<std::pair<int, int>, int> count;  // directed edge -> net uses
-  for (const auto* set : sets)
-    for (const std::vector<int>& piece : *set)
-      for (std::size_t i = 0; i < piece.size(); ++i) {
-        const int a = piece[i], b = piece[(i + 1) % piece.size()];
-        if (a == b) continue;
-        auto twin = count.find({b, a});
-        if (twin != count.end() && twin->second > 0) {
-          if (--twin->second == 0) count.erase(twin);
-        } else {
-          ++count[{a, b}];
+// piece traverses the other way, chained into loops of corner indices (`corners` of them). Each
+// loop starts at the lowest corner with an edge left and, where a corner has several, follows
+// the one to the lowest corner first.
+std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::vector<int>>*>& sets,
+                                      int corners) {
+  // Each edge {lo, hi} once with its net uses (+1 per traversal from lo, -1 per one from hi),
+  // counted in buckets by lo; `first` holds the buckets' starts.
+  struct Use {
+    int hi, net;
+  };
+  const auto each_edge = [&](const auto& f) {
+    for (const auto* set : sets)
+      for (const std::vector<int>& piece : *set)
+        for (std::size_t i = 0; i < piece.size(); ++i) {
+          const int a = piece[i], b = piece[(i + 1) % piece.size()];
+          if (a != b) f(a, b);
         }
-      }
-  std::multimap<int, int> next;  // start -> end, one entry per remaining use
-  for (const auto& [edge, n] : count)
-    for (int k = 0; k < n; ++k) next.emplace(edge.first, edge.second);
-  std::vector<std::vector<int>> loops;
-  while (!next.empty()) {
-    auto it = next.begin();
-    const int start = it->first;
-    std::vector<int> loop{start};
-    int at = it->second;
-    next.erase(it);
-    while (at != start) {
-      loop.push_back(at);
-      it = next.find(at);
-      if (it == next.end()) break;  // cannot happen for closed outlines; drop the remainder
-      at = it->second;
-      next.erase(it);
+  };
+  std::vector<int> first(std::size_t(corners) + 1, 0);
+  each_edge([&](int a, int b) { ++first[std::size_t(std::min(a, b)) + 1]; });
+  for (int c = 0; c < corners; ++c) first[c + 1] += first[c];
+  std::vector<Use> uses(first[corners]);
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    each_edge([&](int a, int b) {
+      uses[fill[std::min(a, b)]++] = {std::max(a, b), a < b ? 1 : -1};
+    });
+  }
+  // The edges left, directed the way their net uses go, in buckets by their start.
+  struct Edge {
+    int from, to, count;
+  };
+  std::vector<Edge> left;
+  for (int lo = 0; lo < corners; ++lo) {
+    const auto b = uses.begin() + first[lo], e = uses.begin() + first[lo + 1];
+    std::sort(b, e, [](const Use& x, const Use& y) { return x.hi < y.hi; });
+    for (auto it = b; it != e;) {
+      int net = 0;
+      const int hi = it->hi;
+      for (; it != e && it->hi == hi; ++it) net += it->net;
+      if (net > 0) left.push_back({lo, hi, net});
+      if (net < 0) left.push_back({hi, lo, -net});
     }
-    if (at == start && loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  std::vector<int> start(std::size_t(corners) + 1, 0);
+  for (const Edge& e : left) start[std::size_t(e.from) + 1] += e.count;
+  for (int c = 0; c < corners; ++c) start[c + 1] += start[c];
+  std::vector<int> to(start[corners]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const Edge& e : left)
+      for (int k = 0; k < e.count; ++k) to[fill[e.from]++] = e.to;
+  }
+  for (int c = 0; c < corners; ++c) std::sort(to.begin() + start[c], to.begin() + start[c + 1]);
+  // next[c]: corner c's first edge not yet followed (each corner's edges go in order).
+  std::vector<int> next(start.begin(), start.end() - 1);
+  std::vector<std::vector<int>> loops;
+  int from = 0;  // the lowest corner that may have an edge left
+  for (;;) {
+    while (from < corners && next[from] == start[from + 1]) ++from;
+    if (from == corners) break;
+    std::vector<int> loop{from};
+    int at = to[next[from]++];
+    while (at != from) {
+      loop.push_back(at);
+      if (next[at] == start[at + 1]) break;  // cannot happen for closed outlines; drop the rest
+      at = to[next[at]++];
+    }
+    if (at == from && loop.size() >= 3) loops.push_back(std::move(loop));
   }
   return loops;
 }
@@ -291,8 +340,9 @@ std::vector<BodyPath> body_paths(const sim::ProjectedBody& body, const BodyTones
   std::vector<BodyPath> out;
   for (const sim::ProjectedSurface& s : body.surfaces) {
     const Pieces pieces(s, tones.threshold, tones.overlap);
-    const auto lit = outline({&pieces.lit, &pieces.band});
-    const auto shadow = outline({&pieces.band, &pieces.deep});
+    const int corners = int(pieces.point.size());
+    const auto lit = outline({&pieces.lit, &pieces.band}, corners);
+    const auto shadow = outline({&pieces.band, &pieces.deep}, corners);
     // Junctions: where either outline turns from one kind of edge to another; both break there,
     // so the silhouette they share is cut into the same runs.
     std::vector<char> junction(pieces.point.size(), 0);

@@ -4,7 +4,6 @@
 
 #include "apps/render/body_occluders.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -20,7 +19,7 @@ namespace wisp::render {
 
 namespace {
 
-// Thrown by FrameFeed::publish to end the feed's thread early.
+// Thrown by FrameFeed::publish, or after the last frame wanted, to end the feed's thread early.
 struct FeedStopped {};
 
 void apply_size(io::Scene& scene, const SceneFramesOptions& options) {
@@ -175,25 +174,29 @@ std::unique_ptr<SceneFrames> stream_scene_frames(io::Scene scene,
   out->projected.resize(count);
   source->projector = make_projector(*out);  // a bad camera is refused here, not by a wait
   add_body(*out);
+  // The frames made: up to the last one wanted, and frame 1 with frame 0 (its motion neighbour).
+  const int made = options.needed > 0 ? std::min(count, std::max(options.needed, 2)) : count;
   out->feed = std::make_unique<FrameFeed>(count);
   // The slots are filled in order and published; the frames never move (out is on the heap)
   // and a frame is read only after its publication.
   SceneFrames* frames = out.get();
-  const int limit = options.frame_limit > 0 ? std::min(count, options.frame_limit) : count;
-  out->feed->start([frames, source, limit](FrameFeed& feed) {
+  out->feed->start([frames, source, made](FrameFeed& feed) {
     int k = 0;
     const auto take = [&](sim::StrandFrame f) {
       if (k >= frames->frame_count()) throw std::logic_error("more frames than announced");
-      if (k == limit) throw FeedStopped{};  // the rest is not needed
       frames->projected[k] = source->projector->project(f);
       frames->anim.frames[k] = std::move(f);
       if (k == 0) add_scalp(*frames);
       feed.publish(++k);
     };
     if (source->setup) {
-      sim::simulate(*source->setup, {}, [&](const sim::StrandFrame& f) { take(f); });
+      sim::simulate(*source->setup, {}, [&](const sim::StrandFrame& f) {
+        take(f);
+        if (k == made && made < frames->frame_count()) throw FeedStopped{};  // ends the simulation
+      });
     } else {
-      for (sim::StrandFrame& f : source->file.frames) take(std::move(f));
+      for (int i = 0; i < made && i < int(source->file.frames.size()); ++i)
+        take(std::move(source->file.frames[i]));
     }
   });
   return out;

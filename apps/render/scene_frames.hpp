@@ -37,9 +37,11 @@ struct SceneFramesOptions {
   int width = 0, height = 0;   // > 0: render at this size instead of the camera's
   // Called while simulating (done, total), as sim::simulate's progress.
   std::function<void(int done, int total)> sim_progress;
-  // > 0: frames from this one on are not needed, and stream_scene_frames' feed stops before them
-  // (a render of frames 0:24 of a long animation neither simulates nor projects the rest).
-  int frame_limit = 0;
+  // stream_scene_frames only: > 0, the frames from `needed` on are not wanted (a render of frames
+  // A:B); the feed ends after the last frame wanted or its motion neighbour (frame 1 for frame
+  // 0), so a saved animation's later frames are not projected and a simulation stops there.
+  // The frame count stays the animation's.
+  int needed = 0;
 };
 
 // Frames made one after another on a thread of their own (stream_scene_frames): the animation
@@ -121,8 +123,9 @@ SceneFrames load_scene_frames(io::Scene scene, const SceneFramesOptions& options
 // The same, but returning once the frames' count is known: the frames are simulated (or read)
 // and projected on a thread of their own (SceneFrames::feed), each ready as soon as it is made;
 // the renderer waits for each frame it takes (SceneFrames::wait_for). The frames are those of
-// load_scene_frames, bit for bit. Scenes that grow fur are made whole before it returns (the
-// fur's springs run over the whole shot); `options.sim_progress` is not called. Errors of the
+// load_scene_frames, bit for bit (up to `options.needed`). Scenes that grow fur are made whole
+// before it returns (the fur's springs run over the whole shot); `options.sim_progress` is not
+// called. Errors of the
 // scene's files and fields are thrown here, the simulation's by the waits.
 std::unique_ptr<SceneFrames> stream_scene_frames(io::Scene scene,
                                                  const SceneFramesOptions& options);
