@@ -10,6 +10,7 @@
 #include "apps/render/picture.hpp"
 #include "diffusion/blur.hpp"
 #include "io/atomic_file.hpp"
+#include "io/image_file.hpp"
 #include "io/png_encode.hpp"
 #include "vector/ink_strokes.hpp"
 
@@ -84,14 +85,9 @@ Surface hair_surface(const diffusion::Image& img, const std::array<int, 4>& box)
   const auto [x0, y0, x1, y1] = box;
   Surface s = make_surface(x1 - x0, y1 - y0);
   cairo_surface_flush(s.get());
-  unsigned char* data = cairo_image_surface_get_data(s.get());
-  const int stride = cairo_image_surface_get_stride(s.get());
-  const size_t n = size_t(img.width) * size_t(img.height);
-  for (int y = y0; y < y1; ++y) {
-    const float* r = &img.planes[size_t(y) * img.width + x0];
-    io::pack_rgb(r, r + n, r + 2 * n,
-                 reinterpret_cast<std::uint32_t*>(data + size_t(y - y0) * stride), x1 - x0);
-  }
+  io::pack_rgb_box(img, x0, y0, x1, y1,
+                   reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s.get())),
+                   size_t(cairo_image_surface_get_stride(s.get())) / sizeof(std::uint32_t));
   cairo_surface_mark_dirty(s.get());
   return s;
 }

@@ -16,6 +16,7 @@
 
 #include "apps/render/picture.hpp"
 #include "io/atomic_file.hpp"
+#include "io/image_file.hpp"
 #include "io/png_encode.hpp"
 #include "sim/body.hpp"
 
@@ -170,13 +171,9 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 
 // The pixels of `img` in the box [x0, x1) x [y0, y1) as a PNG data URI.
 std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, int y1) {
-  const size_t n = size_t(img.width) * img.height;
   const int w = x1 - x0, h = y1 - y0;
   std::vector<std::uint32_t> rgb(size_t(w) * h);  // 0xffRRGGBB words, encoded as RGB
-  for (int y = 0; y < h; ++y) {
-    const float* r = &img.planes[size_t(y + y0) * img.width + x0];
-    io::pack_rgb(r, r + n, r + 2 * n, &rgb[size_t(y) * w], w);
-  }
+  io::pack_rgb_box(img, x0, y0, x1, y1, rgb.data(), size_t(w));
   const std::vector<std::uint8_t> png = io::encode_png(
       {reinterpret_cast<const std::uint8_t*>(rgb.data()), w, h, 3, size_t(w) * 4, true});
   return "data:image/png;base64," + base64(png);
