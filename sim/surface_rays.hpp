@@ -30,9 +30,8 @@ class SurfaceRays {
   // miss.
   double depth(const Eigen::Vector2d& p) const;
   // An upper bound of depth() over the box, +infinity when none is found (or without folds): for
-  // a box that no fold
-  // of the surface's picture meets and whose centre ray hits, the farthest any triangle meeting
-  // it can be there. Lets the arrangement prove hair behind the body hidden
+  // a box that no fold of the surface's picture meets and whose centre ray hits, the farthest any
+  // triangle meeting it can be there. Lets the arrangement prove hair behind the body hidden
   // (vector/hidden_wisps.hpp).
   double max_depth(const Eigen::AlignedBox2d& box) const;
   // The unit direction of the eye ray through pixel p (the inverse of Camera::project).

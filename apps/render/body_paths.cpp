@@ -193,6 +193,26 @@ class Pieces {
   }
 };
 
+// Items grouped by a key in [0, keys) in one array (a stable counting sort): key k's items are
+// items[begin[k]] to items[begin[k + 1]]. `each(put)` calls put(key, item) for every item, the
+// same ones in the same order each time: it runs twice, to count and to fill.
+template <typename T>
+struct Buckets {
+  std::vector<int> begin;
+  std::vector<T> items;
+};
+template <typename T, typename Each>
+Buckets<T> bucket(int keys, const Each& each) {
+  Buckets<T> b;
+  b.begin.assign(std::size_t(keys) + 1, 0);
+  each([&](int key, const T&) { ++b.begin[std::size_t(key) + 1]; });
+  for (int k = 0; k < keys; ++k) b.begin[k + 1] += b.begin[k];
+  b.items.resize(std::size_t(b.begin[keys]));
+  std::vector<int> fill(b.begin.begin(), b.begin.end() - 1);
+  each([&](int key, const T& item) { b.items[std::size_t(fill[key]++)] = item; });
+  return b;
+}
+
 // The outline of a union of same-turning pieces: their edges, minus every edge that another
 // piece traverses the other way, chained into loops of corner indices (`corners` of them). Each
 // loop starts at the lowest corner with an edge left and, where a corner has several, follows
@@ -200,35 +220,25 @@ class Pieces {
 std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::vector<int>>*>& sets,
                                       int corners) {
   // Each edge {lo, hi} once with its net uses (+1 per traversal from lo, -1 per one from hi),
-  // counted in buckets by lo; `first` holds the buckets' starts.
+  // in buckets by lo.
   struct Use {
     int hi, net;
   };
-  const auto each_edge = [&](const auto& f) {
+  Buckets<Use> uses = bucket<Use>(corners, [&](const auto& put) {
     for (const auto* set : sets)
       for (const std::vector<int>& piece : *set)
         for (std::size_t i = 0; i < piece.size(); ++i) {
           const int a = piece[i], b = piece[(i + 1) % piece.size()];
-          if (a != b) f(a, b);
+          if (a != b) put(std::min(a, b), Use{std::max(a, b), a < b ? 1 : -1});
         }
-  };
-  std::vector<int> first(std::size_t(corners) + 1, 0);
-  each_edge([&](int a, int b) { ++first[std::size_t(std::min(a, b)) + 1]; });
-  for (int c = 0; c < corners; ++c) first[c + 1] += first[c];
-  std::vector<Use> uses(first[corners]);
-  {
-    std::vector<int> fill(first.begin(), first.end() - 1);
-    each_edge([&](int a, int b) {
-      uses[fill[std::min(a, b)]++] = {std::max(a, b), a < b ? 1 : -1};
-    });
-  }
-  // The edges left, directed the way their net uses go, in buckets by their start.
+  });
+  // The edges left, directed the way their net uses go.
   struct Edge {
     int from, to, count;
   };
   std::vector<Edge> left;
   for (int lo = 0; lo < corners; ++lo) {
-    const auto b = uses.begin() + first[lo], e = uses.begin() + first[lo + 1];
+    const auto b = uses.items.begin() + uses.begin[lo], e = uses.items.begin() + uses.begin[lo + 1];
     std::sort(b, e, [](const Use& x, const Use& y) { return x.hi < y.hi; });
     for (auto it = b; it != e;) {
       int net = 0;
@@ -238,16 +248,15 @@ std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::v
       if (net < 0) left.push_back({hi, lo, -net});
     }
   }
-  std::vector<int> start(std::size_t(corners) + 1, 0);
-  for (const Edge& e : left) start[std::size_t(e.from) + 1] += e.count;
-  for (int c = 0; c < corners; ++c) start[c + 1] += start[c];
-  std::vector<int> to(start[corners]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
+  // Their ends in buckets by their start, each bucket in order.
+  Buckets<int> edges = bucket<int>(corners, [&](const auto& put) {
     for (const Edge& e : left)
-      for (int k = 0; k < e.count; ++k) to[fill[e.from]++] = e.to;
-  }
-  for (int c = 0; c < corners; ++c) std::sort(to.begin() + start[c], to.begin() + start[c + 1]);
+      for (int k = 0; k < e.count; ++k) put(e.from, e.to);
+  });
+  for (int c = 0; c < corners; ++c)
+    std::sort(edges.items.begin() + edges.begin[c], edges.items.begin() + edges.begin[c + 1]);
+  const std::vector<int>& start = edges.begin;
+  const std::vector<int>& to = edges.items;
   // next[c]: corner c's first edge not yet followed (each corner's edges go in order).
   std::vector<int> next(start.begin(), start.end() - 1);
   std::vector<std::vector<int>> loops;
