@@ -30,7 +30,7 @@ double to_double(const cgal::Point& p, int axis) {
 
 }  // namespace
 
-PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments) {
+PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments) {
   using namespace cgal;
   // Each segment from two points, not from a Segment_2 (whose two vertex() calls are two more
   // nodes of the lazy kernel's DAG), and an outline's consecutive segments share the point where

@@ -54,9 +54,14 @@ struct PlanarMap {
   int source(int h) const { return halfedges[h ^ 1].target; }
 };
 
-// Inserts the segments (zero-length ones are skipped) with one sweep into an arrangement with
-// exact predicates and constructions. Deterministic: indices follow CGAL's construction order,
-// which depends only on the input.
+// The exact arrangement of the segments (vector/segment_arrangement.cpp): their ends snapped to a
+// grid of 2^-k px with every coordinate below 2^29 units (k = 17 at 1024 px), then exact integer
+// predicates throughout. Zero-length segments (after snapping) are skipped. Deterministic:
+// indices depend only on the input. Throws std::invalid_argument on a non-finite coordinate.
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments);
+
+// The same with CGAL's aggregated sweep over Epeck (exact, unsnapped), in wisp_vector_exact: the
+// reference the tests and `wisp-bench arrangement` compare arrange_segments against.
+PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments);
 
 }  // namespace wisp::vector
