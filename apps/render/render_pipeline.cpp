@@ -157,8 +157,8 @@ FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
   return r;
 }
 
-void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
-                    const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
+void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
+                  const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
   const auto t_start = Clock::now();
   FramePicture& pic = r.picture;
   const int W = pic.width, H = pic.height;
@@ -190,11 +190,6 @@ void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const Fram
     // The picture's own copy, since anti-aliasing changes it and not the warm start; anti-aliasing
     // reads the plain solve and writes the copy, so no third image is made.
     pic.hair = {W, H, r.solution};
-    if (setup.antialias) {
-      t0 = Clock::now();
-      r.antialias = antialias_hair(r.curves, pic.mask, r.solution, pic.hair);
-      r.time.antialias = ms_since(t0);
-    }
     t0 = Clock::now();
     const std::vector<diffusion::DiffusionCurve> blurred = vector::blur_curves(
         frame, r.wisps, r.arrangement, setup.style.blur, {setup.lens, neighbour});
@@ -203,12 +198,35 @@ void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const Fram
                                                         warm_blur.empty() ? nullptr : &warm_blur);
       pic.blur = std::move(b.planes);
       r.solution.insert(r.solution.end(), pic.blur.begin(), pic.blur.end());
-      pic.blurred_hair = reblur_hair(pic);
       r.time.blur = ms_since(t0);
     }
   }
   if (!setup.keep_faces) r.arrangement.view = {};
   r.time.total += ms_since(t_start);
+}
+
+void render_finish(FrameResult& r, const FrameSetup& setup, const std::vector<float>& solved) {
+  const auto t_start = Clock::now();
+  FramePicture& pic = r.picture;
+  if (!r.curves.empty()) {
+    if (setup.antialias) {
+      const auto t0 = Clock::now();
+      r.antialias = antialias_hair(r.curves, pic.mask, solved, pic.hair);
+      r.time.antialias = ms_since(t0);
+    }
+    if (!pic.blur.empty()) {
+      const auto t0 = Clock::now();
+      pic.blurred_hair = reblur_hair(pic);
+      r.time.blur += ms_since(t0);
+    }
+  }
+  r.time.total += ms_since(t_start);
+}
+
+void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
+                    const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
+  render_solve(r, frame, setup, warm_start, neighbour);
+  render_finish(r, setup, r.solution);
 }
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,

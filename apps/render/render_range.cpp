@@ -166,20 +166,24 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
   std::vector<int> work;
   for (int b : plan.blocks)
     for (int k = b * plan.block; k < block_end(plan, b); ++k) work.push_back(k);
-  // A frame in flight between the two halves of render_frame.
+  // A frame in flight between the stages of render_frame.
   struct InFlight {
     int k = 0;
     Clock::time_point start;
     FrameResult r;
+    std::shared_ptr<const std::vector<float>> solved;  // the plain solve, until anti-aliased
   };
-  // Frames overlap in a pipeline: the geometry of any frame may run while a frame is shaded, and
-  // the shading runs one frame at a time in order, each warm-started by the frame before when
-  // both are in the same block. So the frames of one block keep both cores busy (with blocks in
+  // Frames overlap in a pipeline: the geometry of any frame may run while a frame is solved, and
+  // the solves run one frame at a time in order, each warm-started by the frame before when both
+  // are in the same block. So the frames of one block keep both cores busy (with blocks in
   // parallel, the last block ran alone on one), one solve is in flight at a time (one solver
   // workspace's memory instead of one per thread), and the pixels are those of a serial run.
-  std::vector<float> warm;
+  // Anti-aliasing needs no other frame: it leaves the serial stage, reading the plain solve that
+  // it shares with the next frame's warm start (no copy).
+  std::shared_ptr<const std::vector<float>> warm;
   std::size_t next = 0;
   const std::size_t tokens = std::size_t(tbb::this_task_arena::max_concurrency()) + 1;
+  using Frame = std::shared_ptr<InFlight>;
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
@@ -187,7 +191,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                                             if (next == work.size()) fc.stop();
                                             return next++;
                                           }) &
-          tbb::make_filter<std::size_t, std::shared_ptr<InFlight>>(
+          tbb::make_filter<std::size_t, Frame>(
               tbb::filter_mode::parallel,
               [&](std::size_t i) {
                 auto f = std::make_shared<InFlight>();
@@ -215,42 +219,57 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                 f->r.time.body = body_ms;
                 return f;
               }) &
-          tbb::make_filter<std::shared_ptr<InFlight>, void>(
-              tbb::filter_mode::serial_in_order, [&](std::shared_ptr<InFlight> f) {
+          tbb::make_filter<Frame, Frame>(
+              tbb::filter_mode::serial_in_order,
+              [&](Frame f) {
                 const int k = f->k;
-                FrameResult& r = f->r;
-                if (k % plan.block == 0) warm.clear();  // a block starts cold
+                if (k % plan.block == 0) warm.reset();  // cold
                 tbb::this_task_arena::isolate([&] {
-                  render_shading(r, frames.projected[k], setup, warm.empty() ? nullptr : &warm,
-                                 motion_neighbour(frames, k));
+                  render_solve(f->r, frames.projected[k], setup,
+                               warm && !warm->empty() ? warm.get() : nullptr,
+                               motion_neighbour(frames, k));
                 });
-                warm = std::move(r.solution);
-                if (!plan.write[k]) return;  // solved only to warm-start the next frame
-                nlohmann::json record = frame_stats(frames, k, r, 0, 0);
-                auto picture = std::make_shared<FramePicture>(std::move(r.picture));
-                const auto t_frame = f->start;
-                f.reset();  // the arrangement, curves and constraints go before the next frame
-                const auto t_wait = Clock::now();
-                writer.wait_for_room();
-                record["ms"]["write_wait"] = ms_since(t_wait);
-                writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
-                  const auto t_write = Clock::now();
-                  const double cpu_write = thread_cpu_ms();
-                  write_frame_png(*picture, files.folder / frame_file_name(k, "png"));
-                  write_frame_svg(*picture, files.folder / frame_file_name(k, "svg"),
-                                  files.svg_style);
-                  if (files.masks)
-                    write_mask_png(*picture,
-                                   files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
-                  picture.reset();
-                  record["ms"]["write"] = ms_since(t_write);
-                  record["ms"]["write_cpu"] = thread_cpu_ms() - cpu_write;
-                  record["ms"]["frame"] = ms_since(t_frame);
-                  io::write_text_atomically(record_path(files.folder, k), record.dump() + "\n");
-                  stats[k] = std::move(record);
-                  if (written) written(++count);
-                });
-              }));
+                f->solved = warm =
+                    std::make_shared<const std::vector<float>>(std::move(f->r.solution));
+                return f;
+              }) &
+          tbb::make_filter<Frame, Frame>(tbb::filter_mode::parallel,
+                                         [&](Frame f) {
+                                           // Solved only to warm-start the next frame: done.
+                                           if (!plan.write[f->k]) return Frame();
+                                           tbb::this_task_arena::isolate(
+                                               [&] { render_finish(f->r, setup, *f->solved); });
+                                           f->solved.reset();
+                                           return f;
+                                         }) &
+          tbb::make_filter<Frame, void>(tbb::filter_mode::serial_in_order, [&](Frame f) {
+            if (!f) return;
+            const int k = f->k;
+            FrameResult& r = f->r;
+            nlohmann::json record = frame_stats(frames, k, r, 0, 0);
+            auto picture = std::make_shared<FramePicture>(std::move(r.picture));
+            const auto t_frame = f->start;
+            f.reset();  // the arrangement, curves and constraints go before the next frame
+            const auto t_wait = Clock::now();
+            writer.wait_for_room();
+            record["ms"]["write_wait"] = ms_since(t_wait);
+            writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
+              const auto t_write = Clock::now();
+              const double cpu_write = thread_cpu_ms();
+              write_frame_png(*picture, files.folder / frame_file_name(k, "png"));
+              write_frame_svg(*picture, files.folder / frame_file_name(k, "svg"), files.svg_style);
+              if (files.masks)
+                write_mask_png(*picture,
+                               files.folder / ("mask" + frame_file_name(k, "png").substr(5)));
+              picture.reset();
+              record["ms"]["write"] = ms_since(t_write);
+              record["ms"]["write_cpu"] = thread_cpu_ms() - cpu_write;
+              record["ms"]["frame"] = ms_since(t_frame);
+              io::write_text_atomically(record_path(files.folder, k), record.dump() + "\n");
+              stats[k] = std::move(record);
+              if (written) written(++count);
+            });
+          }));
   writer.finish();
   // The frames are done: the previews that follow (the video encoder) need the memory.
   diffusion::release_solver_workspaces();
