@@ -5,7 +5,8 @@
 // (a third each straight, wavy and curly, as in the tests). The exact run happens in a forked
 // child with a time limit, because the Bezier traits can take minutes or crash. Times are wall
 // times and, for comparisons on a loaded machine, the arrangement's CPU time (sweep_cpu_ms,
-// arrangement_cpu_ms: the calling thread's).
+// arrangement_cpu_ms: the calling thread's). The peer in the same run: CGAL's sweep over the
+// same segments (cgal_sweep_ms, and its ratio to ours).
 //
 // Arguments: [--exact-timeout SECONDS] (default 60; 0 skips the exact traits) [--repeats N]
 // [--scene plain|mixed] (default both) [--wisps N] (one size instead of 50..1000).
@@ -184,6 +185,12 @@ int run_arrangement(const std::vector<std::string>& args) {
         else
           exact_gave_up = true;  // larger sizes only take longer
       }
+      // CGAL's sweep on the same segments, the peer of ours (sweep_ms), in the same run.
+      std::vector<double> cgal_sweep;
+      vector::ArrangementOptions cgal = options;
+      cgal.arrange = vector::cgal_segment_arrangement();
+      for (int r = 0; r < repeats; ++r)
+        cgal_sweep.push_back(vector::build_arrangement(wisps, cgal).stats.sweep_ms);
       const double ms = median(total);
       std::printf(
           "      {\"wisps\": %d, \"outline_cubics\": %ld, \"segments\": %d, \"vertices\": %d, "
@@ -191,12 +198,14 @@ int run_arrangement(const std::vector<std::string>& args) {
           "\"cull_ms\": %.2f,\n"
           "       \"build_wisps_ms\": %.2f, \"sweep_ms\": %.2f, \"resolve_ms\": %.2f, "
           "\"arrangement_ms\": %.2f, \"us_per_segment\": %.2f,\n"
-          "       \"sweep_cpu_ms\": %.2f, \"arrangement_cpu_ms\": %.2f,\n"
+          "       \"sweep_cpu_ms\": %.2f, \"arrangement_cpu_ms\": %.2f, \"cgal_sweep_ms\": %.2f, "
+          "\"cgal_sweep_over_ours\": %.2f,\n"
           "       \"exact_bezier\": %s}%s\n",
           n, cubics, arr.stats.segments, arr.stats.vertices, arr.stats.edges, arr.stats.faces,
           arr.stats.intersections, arr.stats.hidden_wisps, median(cull), median(build),
           median(sweep), median(resolve), ms, 1000 * ms / arr.stats.segments, median(sweep_cpu),
-          median(total_cpu), exact.c_str(), s + 1 < sizes.size() ? "," : "");
+          median(total_cpu), median(cgal_sweep), median(cgal_sweep) / median(sweep), exact.c_str(),
+          s + 1 < sizes.size() ? "," : "");
       std::fflush(stdout);
     }
     std::printf("    ]}%s\n", k + 1 < scenes.size() ? "," : "");

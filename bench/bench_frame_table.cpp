@@ -132,7 +132,7 @@ int run_frame_table(const std::vector<std::string>&) {
                  write_cpu = m.value("write_cpu", 0.0), write_wait = m.value("write_wait", 0.0),
                  wisps = m.value("wisps", 0.0);
     rows.push_back({"per-frame medians at 1024^2",
-                    fmt("arrangement %.0f ms (CGAL sweep %.0f), solve %.0f, ", arr, sweep, solve) +
+                    fmt("arrangement %.0f ms (sweep %.0f), solve %.0f, ", arr, sweep, solve) +
                         fmt("write %.0f (CPU %.0f, on the writer thread; frames waited %.1f), ",
                             write, write_cpu, write_wait) +
                         fmt("wisps %.0f", wisps),

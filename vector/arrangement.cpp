@@ -504,7 +504,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     out.stats.wisps -= out.stats.hidden_wisps;
     out.stats.cull_ms = ms_since(tc);
   }
-  const PlanarMap map = arrange_segments(segments);
+  const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);
   out.stats.sweep_ms = ms_since(t0);
   const double cpu1 = diffusion::thread_cpu_ms();
   out.stats.sweep_cpu_ms = cpu1 - cpu0;

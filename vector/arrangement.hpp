@@ -39,6 +39,11 @@ struct Occluder {
   std::function<double(const Eigen::AlignedBox2d&)> max_depth;
 };
 
+struct OutlineSegment;
+struct PlanarMap;
+// Arranges the flattened outline segments (vector/planar_map.hpp).
+using SegmentArrangement = PlanarMap (*)(const std::vector<OutlineSegment>&);
+
 struct ArrangementOptions {
   // The image rectangle. With clipping on, its sides enter the arrangement: nothing outside
   // counts as hair or as visible, and wisps wholly outside are left out before the sweep.
@@ -59,6 +64,9 @@ struct ArrangementOptions {
   bool cull_hidden = false;
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
+  // Null: ours (exact predicates on snapped input). `wisp-bench arrangement` passes
+  // cgal_segment_arrangement() to time CGAL's sweep on the same segments.
+  SegmentArrangement arrange = nullptr;
 };
 
 // A polygon with holes, vertices in pixels. The outer boundary turns counter-clockwise in (x, y)
@@ -128,5 +136,10 @@ struct ExactTopology {
   double ms = 0;
 };
 ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps);
+
+// CGAL's aggregated sweep over the exact kernel (Epeck), unsnapped, as a SegmentArrangement: the
+// reference our arrangement is tested and benchmarked against. In wisp_vector_exact, like the
+// above.
+SegmentArrangement cgal_segment_arrangement();
 
 }  // namespace wisp::vector

@@ -1,9 +1,11 @@
-// The one translation unit that builds the exact segment arrangement: one aggregated sweep
-// (CGAL::insert over all segments), then a copy of the DCEL into PlanarMap's index arrays.
+// The segment arrangement through CGAL (wisp_vector_exact): one aggregated sweep (CGAL::insert over
+// all segments), then a copy of the DCEL into PlanarMap's index arrays. Rendering uses our own
+// (segment_arrangement.cpp); this is the reference its tests and `wisp-bench arrangement` compare.
 #include <CGAL/number_utils.h>
 
 #include <cmath>
 
+#include "vector/arrangement.hpp"
 #include "vector/arrangement_cgal.hpp"
 #include "vector/planar_map.hpp"
 
@@ -94,6 +96,10 @@ PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments) {
     face.holes_end = int(map.holes.size());
   }
   return map;
+}
+
+SegmentArrangement cgal_segment_arrangement() {
+  return arrange_segments_cgal;
 }
 
 }  // namespace wisp::vector
