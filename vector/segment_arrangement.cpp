@@ -251,21 +251,30 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   std::vector<IPoint> end_point;           // per end id
   std::vector<Eigen::Vector2d> end_input;  // per end id: the first input point snapped to it
   {
-    std::vector<int> order(2 * n);
-    for (int e = 0; e < 2 * n; ++e) order[e] = e;
-    auto at = [&](int e) { return e % 2 ? segs[e / 2].b : segs[e / 2].a; };
-    std::sort(order.begin(), order.end(), [&](int e, int f) {
-      const IPoint p = at(e), q = at(f);
-      return lex_less(p, q) || (p == q && e < f);
-    });
-    for (int e : order) {
-      if (end_point.empty() || !(end_point.back() == at(e))) {
-        end_point.push_back(at(e));
-        const OutlineSegment& s = input[segs[e / 2].input];
-        end_input.push_back(e % 2 ? s.b : s.a);
-      }
-      end_id[e] = int(end_point.size()) - 1;
+    // An outline's consecutive segments share their meeting point: each such end is sorted once.
+    struct End {
+      IPoint p;
+      int e;
+    };
+    std::vector<End> ends;
+    ends.reserve(size_t(n) + 16);
+    for (int i = 0; i < n; ++i) {
+      if (i == 0 || !(segs[i].a == segs[i - 1].b)) ends.push_back({segs[i].a, 2 * i});
+      ends.push_back({segs[i].b, 2 * i + 1});
     }
+    std::sort(ends.begin(), ends.end(), [](const End& u, const End& v) {
+      return lex_less(u.p, v.p) || (u.p == v.p && u.e < v.e);
+    });
+    for (const End& end : ends) {
+      if (end_point.empty() || !(end_point.back() == end.p)) {
+        end_point.push_back(end.p);
+        const OutlineSegment& s = input[segs[end.e / 2].input];
+        end_input.push_back(end.e % 2 ? s.b : s.a);
+      }
+      end_id[end.e] = int(end_point.size()) - 1;
+    }
+    for (int i = 1; i < n; ++i)
+      if (segs[i].a == segs[i - 1].b) end_id[2 * i] = end_id[2 * i - 1];
   }
   const int n_ends = int(end_point.size());
 
@@ -357,10 +366,9 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     }
   }
   const int n_edges = int(edge_from.size());
-  auto direction = [&](int h) {
-    const IPoint d = segs[edge_segment[h / 2]].dir();
-    return h % 2 ? -d : d;
-  };
+  std::vector<IPoint> edge_dir(n_edges);  // of halfedge 2e: its first source's direction
+  for (int e = 0; e < n_edges; ++e) edge_dir[e] = segs[edge_segment[e]].dir();
+  auto direction = [&](int h) { return h % 2 ? -edge_dir[h / 2] : edge_dir[h / 2]; };
   auto target = [&](int h) { return h % 2 ? edge_from[h / 2] : edge_to[h / 2]; };
 
   // Around each vertex, its outgoing halfedges counter-clockwise; a halfedge's next is the
@@ -373,8 +381,9 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     for (int h = 0; h < 2 * n_edges; ++h) out[fill[target(h ^ 1)]++] = h;
   }
   for (int v = 0; v < n_vertices; ++v) {
-    std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1],
-              [&](int g, int h) { return angle_less(direction(g), direction(h)); });
+    if (out_begin[v + 1] - out_begin[v] > 2)  // two are in order either way round
+      std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1],
+                [&](int g, int h) { return angle_less(direction(g), direction(h)); });
     for (int k = out_begin[v]; k < out_begin[v + 1]; ++k) out_pos[out[k]] = k;
   }
   map.halfedges.resize(2 * size_t(n_edges));
@@ -495,7 +504,10 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     }
     // At a vertex: the sector around it that holds +x (no edge leaves it that way: that edge
     // would be nearer o) lies between its last and its first outgoing halfedge.
-    around[m] = out[out_begin[hit_vertex + 1] - 1];
+    int last = out[out_begin[hit_vertex]];  // (two outgoing halfedges are not sorted)
+    for (int k = out_begin[hit_vertex] + 1; k < out_begin[hit_vertex + 1]; ++k)
+      if (angle_less(direction(last), direction(out[k]))) last = out[k];
+    around[m] = last;
   }
   // A component inside a face bounded by another component's outside lies in that one's face.
   std::vector<int> face_of_component(n_components, -2);
@@ -520,14 +532,9 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     for (int k : chain) face_of_component[k] = face_of_component[m];
     return face_of_component[m];
   };
-  for (int c = 0; c < int(cycle_first.size()); ++c) {
-    const int f = outside_of[c] < 0 ? face_of_cycle[c] : face_of(outside_of[c]);
-    for (int h = cycle_first[c];;) {
-      map.halfedges[h].face = f;
-      h = map.halfedges[h].next;
-      if (h == cycle_first[c]) break;
-    }
-  }
+  for (int c = 0; c < int(cycle_first.size()); ++c)
+    if (outside_of[c] >= 0) face_of_cycle[c] = face_of(outside_of[c]);
+  for (int h = 0; h < 2 * n_edges; ++h) map.halfedges[h].face = face_of_cycle[cycle[h]];
   // Holes, grouped by face in component order.
   {
     std::vector<int> count(map.faces.size() + 1, 0);
