@@ -82,10 +82,11 @@ struct FrameFiles {
 
 // Renders the planned frames into files.folder in a pipeline (TBB): the geometry of any frame
 // (render_geometry) on a free core as soon as the frame is ready (SceneFrames::wait_for: frames
-// may still be simulated), the shading (render_shading) one frame at a time in order, while a
-// writer thread (frame_writer.hpp) draws and writes the finished frames; a failed write ends the
-// run with its error. `written(count)` is called after each frame written, one call at a time
-// (for a progress bar). Each frame's stats record (render_stats.hpp) is kept on disk beside it
+// may still be simulated), the solve (render_solve) one frame at a time in order, anti-aliasing
+// (render_finish) on a free core again, while a writer thread (frame_writer.hpp) draws and writes
+// the finished frames; a failed write ends the run with its error. `written(count)` is called after
+// each frame written, one call at a time (for a progress bar). Each frame's stats record
+// (render_stats.hpp) is kept on disk beside it
 // (.stats/frame_NNNN.json), so a resumed run still reports every frame. Returns the records of
 // the frames written, in frame order.
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
