@@ -114,7 +114,8 @@ struct Grid {
   int row(double y) const { return std::clamp(int(std::floor((y - y0) / cell)), 0, ny - 1); }
 
   // Calls fn(cell) for every cell the segment may pass through: per column, the segment's y range
-  // over the column's x range, widened by one grid unit against rounding.
+  // over the column's x range, both widened by one grid unit against rounding (a steep segment's
+  // y moves by its slope times an x rounding error: the x range is widened, not only y).
   template <class F>
   void for_each_cell(const Segment& s, F&& fn) const {
     const double ax = double(s.a.x), ay = double(s.a.y), bx = double(s.b.x), by = double(s.b.y);
@@ -125,7 +126,8 @@ struct Grid {
       if (ax == bx || c0 == c1) {
         ylo = std::min(ay, by), yhi = std::max(ay, by);
       } else {
-        const double xa = std::max(lo_x, x0 + c * cell), xb = std::min(hi_x, x0 + (c + 1) * cell);
+        const double xa = std::max(lo_x, x0 + c * cell - 1);
+        const double xb = std::min(hi_x, x0 + (c + 1) * cell + 1);
         const double ya = ay + (xa - ax) * (by - ay) / (bx - ax);
         const double yb = ay + (xb - ax) * (by - ay) / (bx - ax);
         ylo = std::min(ya, yb), yhi = std::max(ya, yb);

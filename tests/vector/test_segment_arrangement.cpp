@@ -142,6 +142,20 @@ TEST_CASE("degenerate polygons on a small grid arrange as CGAL arranges them",
   }
 }
 
+TEST_CASE("steep and long segments meet everything they cross", "[vector][arrangement]") {
+  // Nearly vertical needles and nearly horizontal bars across the whole candidate grid: each is
+  // registered in hundreds of cells, its y range per column from its slope.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pos(0, 1000), lean(-1e-3, 1e-3);
+  std::vector<OutlineSegment> s;
+  for (int k = 0; k < 40; ++k) {
+    const double x = pos(rng), y = pos(rng);
+    s.push_back(side(x, -10, x + lean(rng), 1010));
+    s.push_back(side(-10, y, 1010, y + lean(rng)));
+  }
+  require_same_as_cgal(s, 1e-5);  // the snap is 2^-19 px here
+}
+
 TEST_CASE("nested components find the face they lie in", "[vector][arrangement]") {
   std::vector<OutlineSegment> s;
   auto square = [&](double lo, double hi) {
