@@ -28,8 +28,8 @@ struct VideoModule {
   std::string error;  // why it could not be loaded; empty when it was
 };
 
-// Loaded once per process and never unloaded (OpenCV's FFmpeg back end keeps threads and
-// registrations that outlive a dlclose). Throws "<video>: ..." when the module is missing.
+// Loaded once per process and never unloaded (FFmpeg and its codec libraries keep state that
+// outlives a dlclose). Throws "<video>: ..." when the module is missing.
 const VideoModule& video_module(const std::filesystem::path& video) {
   static const VideoModule loaded = [] {
     VideoModule m;
@@ -111,7 +111,7 @@ std::string write_video(const std::filesystem::path& path,
         return;
       }
     throw std::runtime_error(path.string() +
-                             ": OpenCV could not write a decodable MP4 (tried avc1 and mp4v)");
+                             ": FFmpeg could not write a decodable MP4 (tried avc1 and mp4v)");
   });
   return used;
 }
@@ -144,7 +144,7 @@ VideoCheck::VideoCheck(const std::filesystem::path& path, int width, int height,
     : path_(path), width_(width), height_(height) {
   if (!(fps > 0 && fps <= 1000))
     throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
-  // The probe runs in a child process: once loaded, the video module (OpenCV, FFmpeg, x264) stays
+  // The probe runs in a child process: once loaded, the video module (FFmpeg, x264) stays
   // resident, about 60 MB, and a render needs it only for its last step. The child reports an
   // error as one byte, 'M' (VideoModuleError) or 'E', then the message.
   int fds[2];

@@ -1,9 +1,9 @@
-// The MP4 preview: PNG frames, in order, through OpenCV's VideoWriter (Debian's OpenCV encodes
-// through ffmpeg), which lives in the video module loaded on first use (io/video_module.hpp). H.264
-// (fourcc "avc1", libx264) is tried first, MPEG-4 part 2 ("mp4v") if that fails; a codec counts as
-// working only when the finished file decodes back to every frame. The file is written atomically
-// (io/atomic_file.hpp): the temporary keeps the .mp4 extension, from which OpenCV picks the
-// container. Same frames, same bytes (x264 is deterministic).
+// The MP4 preview: PNG frames, in order, through FFmpeg, which lives in the video module loaded on
+// first use (io/video_module.hpp). H.264 (fourcc "avc1", x264) is tried first, MPEG-4 part 2
+// ("mp4v") if that fails; a codec counts as working only when the finished file decodes back to
+// every frame. The file is written atomically (io/atomic_file.hpp): the temporary keeps the .mp4
+// extension. Same frames, same bytes, whatever the process did before (video_module.cpp says
+// which encoder settings that takes).
 #pragma once
 
 #include <exception>
