@@ -1,5 +1,6 @@
-// write_video, check_video and count_video_frames (see video_file.hpp): the frames are read here
-// (io/png_decode) and handed to the video module (io/video_module.hpp), loaded on first use.
+// write_video, VideoCheck, check_video and count_video_frames (see video_file.hpp): the frames are
+// read here (io/png_decode) and handed to the video module (io/video_module.hpp), loaded on first
+// use.
 #include "io/video_file.hpp"
 
 #include <dlfcn.h>
@@ -27,8 +28,8 @@ struct VideoModule {
   std::string error;  // why it could not be loaded; empty when it was
 };
 
-// Loaded once per process and never unloaded (OpenCV's FFmpeg back end keeps threads and
-// registrations that outlive a dlclose). Throws "<video>: ..." when the module is missing.
+// Loaded once per process and never unloaded (FFmpeg and its codec libraries keep state that
+// outlives a dlclose). Throws "<video>: ..." when the module is missing.
 const VideoModule& video_module(const std::filesystem::path& video) {
   static const VideoModule loaded = [] {
     VideoModule m;
@@ -110,7 +111,7 @@ std::string write_video(const std::filesystem::path& path,
         return;
       }
     throw std::runtime_error(path.string() +
-                             ": OpenCV could not write a decodable MP4 (tried avc1 and mp4v)");
+                             ": FFmpeg could not write a decodable MP4 (tried avc1 and mp4v)");
   });
   return used;
 }
@@ -139,22 +140,25 @@ void probe_video(const std::filesystem::path& path, int width, int height, doubl
 
 }  // namespace
 
-void check_video(const std::filesystem::path& path, int width, int height, double fps) {
+VideoCheck::VideoCheck(const std::filesystem::path& path, int width, int height, double fps)
+    : path_(path), width_(width), height_(height) {
   if (!(fps > 0 && fps <= 1000))
     throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
-  // The probe runs in a child process: once loaded, the video module (OpenCV, FFmpeg, x264) stays
+  // The probe runs in a child process: once loaded, the video module (FFmpeg, x264) stays
   // resident, about 60 MB, and a render needs it only for its last step. The child reports an
   // error as one byte, 'M' (VideoModuleError) or 'E', then the message.
   int fds[2];
-  if (pipe(fds) != 0) {
-    probe_video(path, width, height, fps);  // no pipe: probe here, at the cost of the memory
-    return;
-  }
-  const pid_t child = fork();
-  if (child < 0) {
-    close(fds[0]);
-    close(fds[1]);
-    probe_video(path, width, height, fps);
+  const pid_t child = pipe(fds) == 0 ? fork() : -2;
+  if (child < 0) {  // no pipe or no fork: probe here, at the cost of the memory
+    if (child == -1) {
+      close(fds[0]);
+      close(fds[1]);
+    }
+    try {
+      probe_video(path, width, height, fps);
+    } catch (...) {
+      error_ = std::current_exception();
+    }
     return;
   }
   if (child == 0) {
@@ -175,24 +179,48 @@ void check_video(const std::filesystem::path& path, int width, int height, doubl
     _exit(0);  // no atexit handlers or static destructors of the parent's state
   }
   close(fds[1]);
+  child_ = child;
+  report_ = fds[0];
+}
+
+VideoCheck::~VideoCheck() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  collect();
+}
+
+void VideoCheck::wait() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  collect();
+  if (error_) std::rethrow_exception(error_);
+}
+
+void VideoCheck::collect() {
+  if (child_ < 0) return;
   std::string report;
   char buf[512];
-  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) != 0;) {
+  for (ssize_t n; (n = read(report_, buf, sizeof buf)) != 0;) {
     if (n > 0)
       report.append(buf, std::size_t(n));
     else if (errno != EINTR)
       break;
   }
-  close(fds[0]);
+  close(report_);
   int status = 0;
-  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
   }
+  child_ = -1;
   if (!WIFEXITED(status))
-    throw std::runtime_error(path.string() + ": the video probe for a " + std::to_string(width) +
-                             "x" + std::to_string(height) + " video crashed");
-  if (report.empty()) return;
-  if (report[0] == 'M') throw VideoModuleError(report.substr(1));
-  throw std::runtime_error(report.substr(1));
+    error_ = std::make_exception_ptr(
+        std::runtime_error(path_.string() + ": the video probe for a " + std::to_string(width_) +
+                           "x" + std::to_string(height_) + " video crashed"));
+  else if (!report.empty() && report[0] == 'M')
+    error_ = std::make_exception_ptr(VideoModuleError(report.substr(1)));
+  else if (!report.empty())
+    error_ = std::make_exception_ptr(std::runtime_error(report.substr(1)));
+}
+
+void check_video(const std::filesystem::path& path, int width, int height, double fps) {
+  VideoCheck(path, width, height, fps).wait();
 }
 
 int count_video_frames(const std::filesystem::path& path) {

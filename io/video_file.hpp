@@ -1,12 +1,14 @@
-// The MP4 preview: PNG frames, in order, through OpenCV's VideoWriter (Debian's OpenCV encodes
-// through ffmpeg), which lives in the video module loaded on first use (io/video_module.hpp). H.264
-// (fourcc "avc1", libx264) is tried first, MPEG-4 part 2 ("mp4v") if that fails; a codec counts as
-// working only when the finished file decodes back to every frame. The file is written atomically
-// (io/atomic_file.hpp): the temporary keeps the .mp4 extension, from which OpenCV picks the
-// container. Same frames, same bytes (x264 is deterministic).
+// The MP4 preview: PNG frames, in order, through FFmpeg, which lives in the video module loaded on
+// first use (io/video_module.hpp). H.264 (fourcc "avc1", x264) is tried first, MPEG-4 part 2
+// ("mp4v") if that fails; a codec counts as working only when the finished file decodes back to
+// every frame. The file is written atomically (io/atomic_file.hpp): the temporary keeps the .mp4
+// extension. Same frames, same bytes, whatever the process did before (video_module.cpp says
+// which encoder settings that takes).
 #pragma once
 
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,10 +28,38 @@ struct VideoModuleError : std::runtime_error {
 std::string write_video(const std::filesystem::path& path,
                         const std::vector<std::filesystem::path>& frames, double fps);
 
-// Checks, before any frame is rendered, that a width x height video at `fps` can be written:
+// Checks, before any frame is written, that a width x height video at `fps` can be written:
 // encodes one blank frame to a temporary file outside the output folder and reads it back, in a
-// child process, so that the caller does not keep the video module loaded (about 60 MB).
-// Throws std::runtime_error "<path>: ..." when it cannot (sizes the codecs refuse, bad fps).
+// child process, so that the caller does not keep the video module loaded (about 60 MB). The
+// child runs beside the caller, which asks for its answer only when it needs it: `wisp render`
+// starts the check before the first frame and awaits it before writing that frame, so the probe
+// (about 190 ms at 1024x1024) is not added to the first frame's latency.
+class VideoCheck {
+ public:
+  // Starts the probe. Throws at once what needs no probe (fps not in (0, 1000]).
+  VideoCheck(const std::filesystem::path& path, int width, int height, double fps);
+  // Waits for the child when wait() was not called: no process or probe file is left behind.
+  ~VideoCheck();
+  VideoCheck(const VideoCheck&) = delete;
+  VideoCheck& operator=(const VideoCheck&) = delete;
+
+  // Blocks until the answer. Throws std::runtime_error "<path>: ..." when the video cannot be
+  // written (sizes the codecs refuse), VideoModuleError when the module is missing; every later
+  // call returns or throws the same at once. Safe to call from any thread.
+  void wait();
+
+ private:
+  void collect();  // reads the child's report and reaps it; mutex_ held
+
+  std::filesystem::path path_;
+  int width_ = 0, height_ = 0;
+  int child_ = -1;   // the probe's process id; -1 once reaped (or when probed here)
+  int report_ = -1;  // the read end of the pipe the child reports on
+  std::mutex mutex_;
+  std::exception_ptr error_;
+};
+
+// The same, waited for: VideoCheck(path, width, height, fps).wait().
 void check_video(const std::filesystem::path& path, int width, int height, double fps);
 
 // Decodes the whole video and counts its frames; -1 if it cannot be opened.

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -99,20 +100,23 @@ std::unique_ptr<render::SceneFrames> simulate_and_project(io::Scene scene, const
 }
 
 // The planned frames rendered into the folder, with a progress bar. `first_written`: called once,
-// when the first frame is written.
+// when the first frame is written; `before_writing`: render::render_range's.
 std::vector<nlohmann::json> render_frames(const render::SceneFrames& frames,
                                           const render::FrameSetup& setup,
                                           const render::RangePlan& plan,
                                           const render::FrameFiles& files, bool quiet,
-                                          const std::function<void()>& first_written) {
+                                          const std::function<void()>& first_written,
+                                          const std::function<void()>& before_writing) {
   std::unique_ptr<render::ProgressBar> bar;
   const int count = plan.write_count();
   if (!quiet && count > 0) bar = std::make_unique<render::ProgressBar>("render", count);
-  std::vector<nlohmann::json> written =
-      render::render_range(frames, setup, plan, files, [&](int done) {
+  std::vector<nlohmann::json> written = render::render_range(
+      frames, setup, plan, files,
+      [&](int done) {
         if (done == 1) first_written();
         if (bar) bar->update(done);
-      });
+      },
+      before_writing);
   if (bar) bar->finish();
   return written;
 }
@@ -161,15 +165,31 @@ void run_render(const RenderArgs& a) {
   const int cores = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
   const int parallel = frames_in_memory(a, size_field, width, height, cores);
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(parallel));
-  if (scene.render.video && !a.no_previews) {  // --no-previews writes no video: needs no module
+  // The video check runs in a child process beside the first frames, and its answer is awaited
+  // before anything is written: the frame folder is made and the first frame written only then,
+  // so a size the encoder refuses still writes nothing (docs/performance.md, "First frame").
+  std::optional<io::VideoCheck> video;
+  if (scene.render.video && !a.no_previews)  // --no-previews writes no video: needs no module
+    video.emplace(out / "preview.mp4", width, height, scene.sim.fps);
+  const auto await_video = [&] {
+    if (!video) return;
     try {
-      io::check_video(out / "preview.mp4", width, height, scene.sim.fps);
+      video->wait();
     } catch (const io::VideoModuleError&) {
       throw;  // not the size's fault
     } catch (const std::exception& e) {
       throw std::invalid_argument(size_field + ": " + e.what());
     }
-  }
+  };
+  bool folder_ready = false;
+  const auto before_writing = [&] {
+    await_video();
+    render::prepare_frame_folder(out, asked.first, asked.second);
+    folder_ready = true;
+  };
+  // Scenes with fur are simulated whole before the first frame: a refused size is reported
+  // before that work, and the probe has nothing to overlap with.
+  if (scene.fur.count > 0) await_video();
 
   auto t0 = Clock::now();
   const std::unique_ptr<render::SceneFrames> loaded =
@@ -178,17 +198,17 @@ void run_render(const RenderArgs& a) {
   render::RunTimes ms;
   ms.simulate_and_project = ms_since(t0);
   const render::FrameRange range = frame_range(asked, frames.frame_count());
-  render::prepare_frame_folder(out, asked.first, asked.second);
 
   render::FrameSetup setup = render::frame_setup(frames.scene);
   setup.flat_regions = svg_style == render::SvgStyle::Flat;
   const render::RangePlan plan = render::plan_range(out, range, frames.frame_count(),
                                                     frames.scene.render.warm_start_block, a.force);
   t0 = Clock::now();
-  const std::vector<nlohmann::json> written =
-      render_frames(frames, setup, plan, {out, svg_style, a.masks}, a.quiet,
-                    [&] { ms.first_frame = ms_since(t_start); });
+  const std::vector<nlohmann::json> written = render_frames(
+      frames, setup, plan, {out, svg_style, a.masks}, a.quiet,
+      [&] { ms.first_frame = ms_since(t_start); }, before_writing);
   ms.frames = ms_since(t0);
+  if (!folder_ready) before_writing();  // every frame was there: the previews are written next
   // Frames are simulated while the first ones render: the feed's own time, to its last frame.
   if (frames.feed) ms.simulate_and_project += frames.feed->ms();
 

@@ -155,7 +155,8 @@ RangePlan plan_range(const fs::path& folder, FrameRange range, int frame_count, 
 
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
                                          const RangePlan& plan, const FrameFiles& files,
-                                         const std::function<void(int count)>& written) {
+                                         const std::function<void(int count)>& written,
+                                         const std::function<void()>& before_writing) {
   std::vector<nlohmann::json> stats(frames.frame_count());  // null: not written
   int count = 0;
   // Declared after what its jobs touch, so that an unwinding run stops it first. Its jobs run
@@ -254,6 +255,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
             writer.wait_for_room();
             record["ms"]["write_wait"] = ms_since(t_wait);
             writer.push([&, k, t_frame, picture, record = std::move(record)]() mutable {
+              if (count == 0 && before_writing) before_writing();
               const auto t_write = Clock::now();
               const double cpu_write = thread_cpu_ms();
               write_frame_png(*picture, files.folder / frame_file_name(k, "png"));

@@ -85,13 +85,17 @@ struct FrameFiles {
 // may still be simulated), the solve (render_solve) one frame at a time in order, anti-aliasing
 // (render_finish) on a free core again, while a writer thread (frame_writer.hpp) draws and writes
 // the finished frames; a failed write ends the run with its error. `written(count)` is called after
-// each frame written, one call at a time (for a progress bar). Each frame's stats record
-// (render_stats.hpp) is kept on disk beside it
+// each frame written, one call at a time (for a progress bar). `before_writing`, when given, is
+// called once on the writer thread before the first file is written (not at all when no frame
+// is): checks whose answer comes while the first frame computes are awaited there, and what it
+// throws ends the run before any file is written. Each frame's stats record (render_stats.hpp) is
+// kept on disk beside it
 // (.stats/frame_NNNN.json), so a resumed run still reports every frame. Returns the records of
 // the frames written, in frame order.
 std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameSetup& setup,
                                          const RangePlan& plan, const FrameFiles& files,
-                                         const std::function<void(int count)>& written);
+                                         const std::function<void(int count)>& written,
+                                         const std::function<void()>& before_writing = {});
 
 // The records of every frame of `range` in `folder`: those of `written` (this run), else those
 // kept on disk by earlier runs; frames with neither are left out. In frame order.

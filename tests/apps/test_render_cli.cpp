@@ -208,6 +208,10 @@ TEST_CASE("wisp render refuses bad input with one line and exit code 2", "[cli][
       {kScene + " -o " + dir + "/out --anim " + animation() + " --frames 90:120", "has 97 frames"},
       {kScene + " -o " + dir + "/out --frames 5:2", "greater than"},
       {kScene + " -o " + dir + "/out --size 0x9", "between 1 and 16384"},
+      // Refused by the encoder's probe, which runs beside the first frame: awaited before that
+      // frame is written.
+      {kScene + " -o " + dir + "/out --anim " + animation() + " --size 1x1 --frames 0:1",
+       "--size 1x1: " + dir + "/out/preview.mp4: cannot encode a 1x1 video"},
   };
   for (const auto& c : cases) {
     INFO(c.args);
@@ -215,6 +219,6 @@ TEST_CASE("wisp render refuses bad input with one line and exit code 2", "[cli][
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.output, Catch::Contains(c.expected));
     CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
-    CHECK(!fs::exists(dir + "/out/frame_0000.png"));
+    CHECK(!fs::exists(dir + "/out"));  // bad input writes nothing, not even the folder
   }
 }
