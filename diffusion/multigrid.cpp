@@ -16,6 +16,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -184,7 +185,10 @@ class Multigrid {
                    std::vector<float>* out, std::vector<double>* row_norms = nullptr) const;
   std::array<double, NC> residual_norms(int l) const;
   std::array<double, NC> sum_row_norms(const std::vector<double>& rows, int h) const;
-  void restrict_to_coarse(int l, const std::vector<float>* source);
+  // Row J of levels_[l+1].rhs = P^T r, from r on fine rows 2J-1, 2J, 2J+1 (per channel, each
+  // pointing at x = 0 of a row readable from x = -1 to w, zero outside the level).
+  void restrict_row(int l, int J, const float* const north[NC], const float* const centre[NC],
+                    const float* const south[NC]);
   void prolongate_add(int l);  // levels_[l].e += P levels_[l+1].e
   void solve_coarsest();
   // `measure`: called for every finest row after the post-smoothing (see smooth()).
@@ -905,61 +909,26 @@ std::array<double, NC> Multigrid<NC>::sum_row_norms(const std::vector<double>& r
   return norms;
 }
 
-// levels_[l+1].rhs = P^T r on the fine points of level l, r being `source` (channel planes,
-// padded) or, without it, the residual rhs - A e of level l. That residual is computed for a band
-// of rows at a time (the rows its coarse rows read, the band's edge rows twice) and never stored
-// whole: one pass over the fine level instead of a write and a read of a residual array.
 template <int NC>
-void Multigrid<NC>::restrict_to_coarse(int l, const std::vector<float>* source) {
-  const Level& F = levels_[l];
+void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
+                                 const float* const centre[NC], const float* const south[NC]) {
   Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
-  const size_t nf = F.padded(), nc = C.padded();
-  const int fs = F.stride, cs = C.stride;
-  for_rows(C.h, C.w * 2, [&](int J0, int J1) {
-    // Fine rows y_first .. y_first + rows - 1 are read; the band holds them (ghosts 0).
-    const int y_first = 2 * J0 - 1, rows = 2 * (J1 - J0) + 1;
-    std::unique_ptr<float[]> band;
-    const float* r[NC];
-    size_t offset = 0;  // of the band's first point in the level's padded layout
-    if (source) {
-      for (int c = 0; c < NC; ++c) r[c] = &(*source)[c * nf];
-    } else {
-      const size_t band_size = size_t(rows) * fs;
-      band.reset(new float[band_size * NC]);
-      offset = F.at(-1, y_first);
-      for (int yy = 0; yy < rows; ++yy) {
-        const int y = y_first + yy;
-        float* out[NC];
-        for (int c = 0; c < NC; ++c) {
-          float* row = &band[c * band_size + size_t(yy) * fs];
-          if (y < 0 || y >= F.h) {
-            std::fill_n(row, fs, 0.0f);
-          } else {
-            row[0] = row[fs - 1] = 0.0f;
-          }
-          out[c] = row + 1;
-        }
-        if (y >= 0 && y < F.h) residual_row(l, y, &F.rhs, F.e, out, nullptr);
-      }
-      for (int c = 0; c < NC; ++c) r[c] = &band[c * band_size];
+  const size_t nc = C.padded();
+  const int cs = C.stride;
+  for (int I = 0; I < C.w; ++I) {
+    const size_t kc = C.at(I, J);
+    const int x = 2 * I;
+    for (int c = 0; c < NC; ++c) {
+      const float *rn = north[c], *r0 = centre[c], *rs = south[c];
+      float v = 0.0f;
+      if (C.alive[kc])
+        v = r0[x] + P.x0[kc] * r0[x + 1] + P.x1[kc - 1] * r0[x - 1] + P.y0[kc] * rs[x] +
+            P.y1[kc - cs] * rn[x] + P.c00[kc] * rs[x + 1] + P.c10[kc - 1] * rs[x - 1] +
+            P.c01[kc - cs] * rn[x + 1] + P.c11[kc - cs - 1] * rn[x - 1];
+      C.rhs[c * nc + kc] = v;
     }
-    for (int J = J0; J < J1; ++J)
-      for (int I = 0; I < C.w; ++I) {
-        const size_t kc = C.at(I, J);
-        const size_t k = F.at(2 * I, 2 * J) - offset;  // neighbours may be ghosts: 0 there
-        for (int c = 0; c < NC; ++c) {
-          const float* rc = r[c];
-          float v = 0.0f;
-          if (C.alive[kc])
-            v = rc[k] + P.x0[kc] * rc[k + 1] + P.x1[kc - 1] * rc[k - 1] + P.y0[kc] * rc[k + fs] +
-                P.y1[kc - cs] * rc[k - fs] + P.c00[kc] * rc[k + fs + 1] +
-                P.c10[kc - 1] * rc[k + fs - 1] + P.c01[kc - cs] * rc[k - fs + 1] +
-                P.c11[kc - cs - 1] * rc[k - fs - 1];
-          C.rhs[c * nc + kc] = v;
-        }
-      }
-  });
+  }
 }
 
 // Row by row, a cell (two fine points) at a time, so that the loops have no branch and
@@ -1009,14 +978,68 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       for (int y = 0; y < levels_[l].h; ++y) (*measure)(y);
     return;
   }
-  // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
-  // and can precondition conjugate gradients.
-  smooth(l, options_.pre_smooth, false);
-  restrict_to_coarse(l, nullptr);
-  Level& C = levels_[l + 1];
-  std::fill(C.e.begin(), C.e.end(), 0.0f);
+  // The residual is restricted inside the pre-smoothing's wave: each residual row is computed
+  // once its neighbourhood is final, while it is in cache, into a ring of the last three rows of
+  // the thread, and coarse row J is restricted by whichever thread completes the last of fine
+  // rows 2J-1 .. 2J+1 (from its ring, computing what it lacks: near chunk boundaries). The ring's
+  // rows are labelled with the pre-smoothing's number, unique in the process (a thread's ring
+  // outlives the solve, and threads may run chunks of other solves in between), so no row of
+  // another pre-smoothing is ever taken for one of this one.
+  Level& F = levels_[l];
+  const Level& C = levels_[l + 1];
+  const int fs = F.stride;
+  static std::atomic<std::uint64_t> pre_smoothings{0};
+  const std::uint64_t pass = ++pre_smoothings;
+  const std::unique_ptr<std::atomic<int>[]> rows_ready(new std::atomic<int>[size_t(C.h)]);
+  for (int J = 0; J < C.h; ++J) rows_ready[J].store(0, std::memory_order_relaxed);
+  struct Ring {
+    std::vector<float> rows;  // 3 slots of NC padded rows
+    std::uint64_t pass[3] = {0, 0, 0};
+    int y[3] = {-1, -1, -1};
+  };
+  const RowHook restrict_rows = [&](int y) {
+    thread_local Ring ring;
+    thread_local std::vector<float> zeros;
+    if (ring.rows.size() < size_t(3) * NC * fs) ring.rows.assign(size_t(3) * NC * fs, 0.0f);
+    if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
+    // Residual row `row` in the ring (x = 0 of each channel's row).
+    const auto residual = [&](int row, const float* out[NC]) {
+      if (row < 0 || row >= F.h) {
+        for (int c = 0; c < NC; ++c) out[c] = zeros.data() + 1;
+        return;
+      }
+      const int slot = row % 3;
+      float* rows[NC];
+      for (int c = 0; c < NC; ++c) {
+        float* r = &ring.rows[(size_t(slot) * NC + c) * fs];
+        r[0] = r[fs - 1] = 0.0f;
+        rows[c] = r + 1;
+        out[c] = r + 1;
+      }
+      if (ring.pass[slot] == pass && ring.y[slot] == row) return;
+      residual_row(l, row, &F.rhs, F.e, rows, nullptr);
+      ring.pass[slot] = pass;
+      ring.y[slot] = row;
+    };
+    const float* unused[NC];
+    residual(y, unused);
+    // Coarse row J reads fine rows 2J-1 .. 2J+1.
+    for (int J = y / 2; J <= std::min(C.h - 1, (y + 1) / 2); ++J) {
+      const int needed = std::min(F.h - 1, 2 * J + 1) - std::max(0, 2 * J - 1) + 1;
+      if (rows_ready[J].fetch_add(1, std::memory_order_acq_rel) + 1 != needed) continue;
+      const float *north[NC], *centre[NC], *south[NC];
+      residual(2 * J - 1, north);
+      residual(2 * J, centre);
+      residual(2 * J + 1, south);
+      restrict_row(l, J, north, centre, south);
+    }
+  };
+  smooth(l, options_.pre_smooth, false, &restrict_rows);
+  std::fill(levels_[l + 1].e.begin(), levels_[l + 1].e.end(), 0.0f);
   vcycle(l + 1);
   prolongate_add(l);
+  // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
+  // and can precondition conjugate gradients.
   smooth(l, options_.post_smooth, true, measure);
 }
 
@@ -1317,7 +1340,20 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
-    for (int l = 0; l + 1 < count; ++l) restrict_to_coarse(l, &levels_[l].rhs);
+    for (int l = 0; l + 1 < count; ++l) {
+      const Level& L = levels_[l];
+      for_rows(levels_[l + 1].h, levels_[l + 1].w * 2, [&](int J0, int J1) {
+        for (int J = J0; J < J1; ++J) {
+          const float *north[NC], *centre[NC], *south[NC];  // ghost rows beyond the level: 0
+          for (int c = 0; c < NC; ++c) {
+            north[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J - 1)];
+            centre[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J)];
+            south[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J + 1)];
+          }
+          restrict_row(l, J, north, centre, south);
+        }
+      });
+    }
     std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
