@@ -177,7 +177,10 @@ class Multigrid {
   void build_coarsest();
   // `row_done`, when given, is called once for every row y of the level as soon as rows y-1..y+1
   // have their final values (rows in parallel), while they are still in cache.
-  void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr);
+  // `row_first`, when given, is called once for every row y of the level before any stage
+  // reads it (rows in parallel): the prolongation, in the post-smoothing's wave.
+  void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr,
+              const RowHook* row_first = nullptr);
   void relax_row(Level& L, int y, int x_parity);
   void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
                     float* const out[NC], float* norms) const;
@@ -189,7 +192,8 @@ class Multigrid {
   // pointing at x = 0 of a row readable from x = -1 to w, zero outside the level).
   void restrict_row(int l, int J, const float* const north[NC], const float* const centre[NC],
                     const float* const south[NC]);
-  void prolongate_add(int l);  // levels_[l].e += P levels_[l+1].e
+  void prolongate_add(int l);         // levels_[l].e += P levels_[l+1].e
+  void prolongate_row(int l, int y);  // the same for row y of levels_[l]
   void solve_coarsest();
   // `measure`: called for every finest row after the post-smoothing (see smooth()).
   void vcycle(int l, const RowHook* measure = nullptr);
@@ -781,7 +785,8 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
 // behind the last stage (row y once the last stage has done row y+1), and around each chunk
 // boundary after the second phase.
 template <int NC>
-void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_done) {
+void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_done,
+                           const RowHook* row_first) {
   Level& L = levels_[l];
   const int stages = 2 * sweeps;
   const auto stage = [&](int y, int k) {
@@ -797,6 +802,10 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
     relax_row(L, y, reverse ? 0 : 1);
   };
   if (stages == 0) {
+    if (row_first)
+      for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) (*row_first)(y);
+      });
     if (row_done)
       for_rows(L.h, L.w * NC, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) (*row_done)(y);
@@ -815,12 +824,22 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
       tbb::parallel_for(first, last, body);
   };
   const int last = stages - 1;
+  // row_first: the two rows around each chunk boundary first (both chunks' first stage reads
+  // them), the other rows by their chunk one row ahead of its first stage.
+  if (row_first)
+    parallel(1, chunks, [&](int c) {
+      (*row_first)(first_row(c) - 1);
+      (*row_first)(first_row(c));
+    });
   parallel(0, chunks, [&](int c) {
     const int y0 = first_row(c), y1 = first_row(c + 1);
+    const int own0 = c == 0 ? 0 : y0 + 1, own1 = c + 1 == chunks ? L.h : y1 - 1;
+    if (row_first && own0 == 0 && own1 > 0) (*row_first)(0);
     // The rows whose neighbourhood this phase finishes: the last stage's rows but the one
     // nearest each neighbour chunk.
     const int done0 = c == 0 ? 0 : y0 + last + 1, done1 = c + 1 == chunks ? L.h : y1 - last - 1;
     for (int t = y0; t < y1 + stages; ++t) {
+      if (row_first && t + 1 >= own0 && t + 1 < own1) (*row_first)(t + 1);
       for (int k = 0; k < stages; ++k) {
         const int y = t - k;
         if (y >= (c == 0 ? 0 : y0 + k) && y < (c + 1 == chunks ? L.h : y1 - k)) stage(y, k);
@@ -935,39 +954,41 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
 // vectorise; the sums are the same, term by term, as point by point.
 template <int NC>
 void Multigrid<NC>::prolongate_add(int l) {
+  for_rows(levels_[l].h, levels_[l].w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) prolongate_row(l, y);
+  });
+}
+
+template <int NC>
+void Multigrid<NC>::prolongate_row(int l, int y) {
   Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
   const size_t nf = F.padded(), nc = C.padded();
   const int cs = C.stride, pairs = F.w / 2;
-  for_rows(F.h, F.w * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
-      for (int c = 0; c < NC; ++c) {
-        float* __restrict e = &F.e[c * nf + F.at(0, y)];
-        const float* __restrict ec = &C.e[c * nc + row];
-        if (!(y & 1)) {
-          const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
-          for (int I = 0; I < pairs; ++I) {
-            e[2 * I] += ec[I];
-            e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
-          }
-          if (F.w & 1) e[F.w - 1] += ec[pairs];
-        } else {
-          const float* __restrict es = ec + cs;
-          const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
-          const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
-          const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
-          for (int I = 0; I < pairs; ++I) {
-            e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
-            e[2 * I + 1] +=
-                c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
-          }
-          if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
-        }
+  const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
+  for (int c = 0; c < NC; ++c) {
+    float* __restrict e = &F.e[c * nf + F.at(0, y)];
+    const float* __restrict ec = &C.e[c * nc + row];
+    if (!(y & 1)) {
+      const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
+      for (int I = 0; I < pairs; ++I) {
+        e[2 * I] += ec[I];
+        e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
       }
+      if (F.w & 1) e[F.w - 1] += ec[pairs];
+    } else {
+      const float* __restrict es = ec + cs;
+      const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
+      const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
+      const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
+      for (int I = 0; I < pairs; ++I) {
+        e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
+        e[2 * I + 1] += c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
+      }
+      if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
     }
-  });
+  }
 }
 
 template <int NC>
@@ -1037,10 +1058,11 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
   smooth(l, options_.pre_smooth, false, &restrict_rows);
   std::fill(levels_[l + 1].e.begin(), levels_[l + 1].e.end(), 0.0f);
   vcycle(l + 1);
-  prolongate_add(l);
-  // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
-  // and can precondition conjugate gradients.
-  smooth(l, options_.post_smooth, true, measure);
+  // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
+  // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
+  // operator and can precondition conjugate gradients.
+  const RowHook prolongate = [&](int y) { prolongate_row(l, y); };
+  smooth(l, options_.post_smooth, true, measure, &prolongate);
 }
 
 // Per-channel dot products on the finest level, summed row by row in a fixed order.
