@@ -16,6 +16,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -176,7 +177,10 @@ class Multigrid {
   void build_coarsest();
   // `row_done`, when given, is called once for every row y of the level as soon as rows y-1..y+1
   // have their final values (rows in parallel), while they are still in cache.
-  void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr);
+  // `row_first`, when given, is called once for every row y of the level before any stage
+  // reads it (rows in parallel): the prolongation, in the post-smoothing's wave.
+  void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr,
+              const RowHook* row_first = nullptr);
   void relax_row(Level& L, int y, int x_parity);
   void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
                     float* const out[NC], float* norms) const;
@@ -184,8 +188,12 @@ class Multigrid {
                    std::vector<float>* out, std::vector<double>* row_norms = nullptr) const;
   std::array<double, NC> residual_norms(int l) const;
   std::array<double, NC> sum_row_norms(const std::vector<double>& rows, int h) const;
-  void restrict_to_coarse(int l, const std::vector<float>* source);
-  void prolongate_add(int l);  // levels_[l].e += P levels_[l+1].e
+  // Row J of levels_[l+1].rhs = P^T r, from r on fine rows 2J-1, 2J, 2J+1 (per channel, each
+  // pointing at x = 0 of a row readable from x = -1 to w, zero outside the level).
+  void restrict_row(int l, int J, const float* const north[NC], const float* const centre[NC],
+                    const float* const south[NC]);
+  void prolongate_add(int l);         // levels_[l].e += P levels_[l+1].e
+  void prolongate_row(int l, int y);  // the same for row y of levels_[l]
   void solve_coarsest();
   // `measure`: called for every finest row after the post-smoothing (see smooth()).
   void vcycle(int l, const RowHook* measure = nullptr);
@@ -777,7 +785,8 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
 // behind the last stage (row y once the last stage has done row y+1), and around each chunk
 // boundary after the second phase.
 template <int NC>
-void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_done) {
+void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_done,
+                           const RowHook* row_first) {
   Level& L = levels_[l];
   const int stages = 2 * sweeps;
   const auto stage = [&](int y, int k) {
@@ -793,6 +802,10 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
     relax_row(L, y, reverse ? 0 : 1);
   };
   if (stages == 0) {
+    if (row_first)
+      for_rows(L.h, L.w * NC, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) (*row_first)(y);
+      });
     if (row_done)
       for_rows(L.h, L.w * NC, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) (*row_done)(y);
@@ -811,12 +824,22 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
       tbb::parallel_for(first, last, body);
   };
   const int last = stages - 1;
+  // row_first: the two rows around each chunk boundary first (both chunks' first stage reads
+  // them), the other rows by their chunk one row ahead of its first stage.
+  if (row_first)
+    parallel(1, chunks, [&](int c) {
+      (*row_first)(first_row(c) - 1);
+      (*row_first)(first_row(c));
+    });
   parallel(0, chunks, [&](int c) {
     const int y0 = first_row(c), y1 = first_row(c + 1);
+    const int own0 = c == 0 ? 0 : y0 + 1, own1 = c + 1 == chunks ? L.h : y1 - 1;
+    if (row_first && own0 == 0 && own1 > 0) (*row_first)(0);
     // The rows whose neighbourhood this phase finishes: the last stage's rows but the one
     // nearest each neighbour chunk.
     const int done0 = c == 0 ? 0 : y0 + last + 1, done1 = c + 1 == chunks ? L.h : y1 - last - 1;
     for (int t = y0; t < y1 + stages; ++t) {
+      if (row_first && t + 1 >= own0 && t + 1 < own1) (*row_first)(t + 1);
       for (int k = 0; k < stages; ++k) {
         const int y = t - k;
         if (y >= (c == 0 ? 0 : y0 + k) && y < (c + 1 == chunks ? L.h : y1 - k)) stage(y, k);
@@ -905,100 +928,67 @@ std::array<double, NC> Multigrid<NC>::sum_row_norms(const std::vector<double>& r
   return norms;
 }
 
-// levels_[l+1].rhs = P^T r on the fine points of level l, r being `source` (channel planes,
-// padded) or, without it, the residual rhs - A e of level l. That residual is computed for a band
-// of rows at a time (the rows its coarse rows read, the band's edge rows twice) and never stored
-// whole: one pass over the fine level instead of a write and a read of a residual array.
 template <int NC>
-void Multigrid<NC>::restrict_to_coarse(int l, const std::vector<float>* source) {
-  const Level& F = levels_[l];
+void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
+                                 const float* const centre[NC], const float* const south[NC]) {
   Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
-  const size_t nf = F.padded(), nc = C.padded();
-  const int fs = F.stride, cs = C.stride;
-  for_rows(C.h, C.w * 2, [&](int J0, int J1) {
-    // Fine rows y_first .. y_first + rows - 1 are read; the band holds them (ghosts 0).
-    const int y_first = 2 * J0 - 1, rows = 2 * (J1 - J0) + 1;
-    std::unique_ptr<float[]> band;
-    const float* r[NC];
-    size_t offset = 0;  // of the band's first point in the level's padded layout
-    if (source) {
-      for (int c = 0; c < NC; ++c) r[c] = &(*source)[c * nf];
-    } else {
-      const size_t band_size = size_t(rows) * fs;
-      band.reset(new float[band_size * NC]);
-      offset = F.at(-1, y_first);
-      for (int yy = 0; yy < rows; ++yy) {
-        const int y = y_first + yy;
-        float* out[NC];
-        for (int c = 0; c < NC; ++c) {
-          float* row = &band[c * band_size + size_t(yy) * fs];
-          if (y < 0 || y >= F.h) {
-            std::fill_n(row, fs, 0.0f);
-          } else {
-            row[0] = row[fs - 1] = 0.0f;
-          }
-          out[c] = row + 1;
-        }
-        if (y >= 0 && y < F.h) residual_row(l, y, &F.rhs, F.e, out, nullptr);
-      }
-      for (int c = 0; c < NC; ++c) r[c] = &band[c * band_size];
+  const size_t nc = C.padded();
+  const int cs = C.stride;
+  for (int I = 0; I < C.w; ++I) {
+    const size_t kc = C.at(I, J);
+    const int x = 2 * I;
+    for (int c = 0; c < NC; ++c) {
+      const float *rn = north[c], *r0 = centre[c], *rs = south[c];
+      float v = 0.0f;
+      if (C.alive[kc])
+        v = r0[x] + P.x0[kc] * r0[x + 1] + P.x1[kc - 1] * r0[x - 1] + P.y0[kc] * rs[x] +
+            P.y1[kc - cs] * rn[x] + P.c00[kc] * rs[x + 1] + P.c10[kc - 1] * rs[x - 1] +
+            P.c01[kc - cs] * rn[x + 1] + P.c11[kc - cs - 1] * rn[x - 1];
+      C.rhs[c * nc + kc] = v;
     }
-    for (int J = J0; J < J1; ++J)
-      for (int I = 0; I < C.w; ++I) {
-        const size_t kc = C.at(I, J);
-        const size_t k = F.at(2 * I, 2 * J) - offset;  // neighbours may be ghosts: 0 there
-        for (int c = 0; c < NC; ++c) {
-          const float* rc = r[c];
-          float v = 0.0f;
-          if (C.alive[kc])
-            v = rc[k] + P.x0[kc] * rc[k + 1] + P.x1[kc - 1] * rc[k - 1] + P.y0[kc] * rc[k + fs] +
-                P.y1[kc - cs] * rc[k - fs] + P.c00[kc] * rc[k + fs + 1] +
-                P.c10[kc - 1] * rc[k + fs - 1] + P.c01[kc - cs] * rc[k - fs + 1] +
-                P.c11[kc - cs - 1] * rc[k - fs - 1];
-          C.rhs[c * nc + kc] = v;
-        }
-      }
-  });
+  }
 }
 
 // Row by row, a cell (two fine points) at a time, so that the loops have no branch and
 // vectorise; the sums are the same, term by term, as point by point.
 template <int NC>
 void Multigrid<NC>::prolongate_add(int l) {
+  for_rows(levels_[l].h, levels_[l].w * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) prolongate_row(l, y);
+  });
+}
+
+template <int NC>
+void Multigrid<NC>::prolongate_row(int l, int y) {
   Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
   const size_t nf = F.padded(), nc = C.padded();
   const int cs = C.stride, pairs = F.w / 2;
-  for_rows(F.h, F.w * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
-      for (int c = 0; c < NC; ++c) {
-        float* __restrict e = &F.e[c * nf + F.at(0, y)];
-        const float* __restrict ec = &C.e[c * nc + row];
-        if (!(y & 1)) {
-          const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
-          for (int I = 0; I < pairs; ++I) {
-            e[2 * I] += ec[I];
-            e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
-          }
-          if (F.w & 1) e[F.w - 1] += ec[pairs];
-        } else {
-          const float* __restrict es = ec + cs;
-          const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
-          const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
-          const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
-          for (int I = 0; I < pairs; ++I) {
-            e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
-            e[2 * I + 1] +=
-                c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
-          }
-          if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
-        }
+  const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
+  for (int c = 0; c < NC; ++c) {
+    float* __restrict e = &F.e[c * nf + F.at(0, y)];
+    const float* __restrict ec = &C.e[c * nc + row];
+    if (!(y & 1)) {
+      const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
+      for (int I = 0; I < pairs; ++I) {
+        e[2 * I] += ec[I];
+        e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
       }
+      if (F.w & 1) e[F.w - 1] += ec[pairs];
+    } else {
+      const float* __restrict es = ec + cs;
+      const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
+      const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
+      const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
+      for (int I = 0; I < pairs; ++I) {
+        e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
+        e[2 * I + 1] += c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
+      }
+      if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
     }
-  });
+  }
 }
 
 template <int NC>
@@ -1009,15 +999,70 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       for (int y = 0; y < levels_[l].h; ++y) (*measure)(y);
     return;
   }
-  // Post-smoothing visits the colours in reverse order: the cycle is then a symmetric operator
-  // and can precondition conjugate gradients.
-  smooth(l, options_.pre_smooth, false);
-  restrict_to_coarse(l, nullptr);
-  Level& C = levels_[l + 1];
-  std::fill(C.e.begin(), C.e.end(), 0.0f);
+  // The residual is restricted inside the pre-smoothing's wave: each residual row is computed
+  // once its neighbourhood is final, while it is in cache, into a ring of the last three rows of
+  // the thread, and coarse row J is restricted by whichever thread completes the last of fine
+  // rows 2J-1 .. 2J+1 (from its ring, computing what it lacks: near chunk boundaries). The ring's
+  // rows are labelled with the pre-smoothing's number, unique in the process (a thread's ring
+  // outlives the solve, and threads may run chunks of other solves in between), so no row of
+  // another pre-smoothing is ever taken for one of this one.
+  Level& F = levels_[l];
+  const Level& C = levels_[l + 1];
+  const int fs = F.stride;
+  static std::atomic<std::uint64_t> pre_smoothings{0};
+  const std::uint64_t pass = ++pre_smoothings;
+  const std::unique_ptr<std::atomic<int>[]> rows_ready(new std::atomic<int>[size_t(C.h)]);
+  for (int J = 0; J < C.h; ++J) rows_ready[J].store(0, std::memory_order_relaxed);
+  struct Ring {
+    std::vector<float> rows;  // 3 slots of NC padded rows
+    std::uint64_t pass[3] = {0, 0, 0};
+    int y[3] = {-1, -1, -1};
+  };
+  const RowHook restrict_rows = [&](int y) {
+    thread_local Ring ring;
+    thread_local std::vector<float> zeros;
+    if (ring.rows.size() < size_t(3) * NC * fs) ring.rows.assign(size_t(3) * NC * fs, 0.0f);
+    if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
+    // Residual row `row` in the ring (x = 0 of each channel's row).
+    const auto residual = [&](int row, const float* out[NC]) {
+      if (row < 0 || row >= F.h) {
+        for (int c = 0; c < NC; ++c) out[c] = zeros.data() + 1;
+        return;
+      }
+      const int slot = row % 3;
+      float* rows[NC];
+      for (int c = 0; c < NC; ++c) {
+        float* r = &ring.rows[(size_t(slot) * NC + c) * fs];
+        r[0] = r[fs - 1] = 0.0f;
+        rows[c] = r + 1;
+        out[c] = r + 1;
+      }
+      if (ring.pass[slot] == pass && ring.y[slot] == row) return;
+      residual_row(l, row, &F.rhs, F.e, rows, nullptr);
+      ring.pass[slot] = pass;
+      ring.y[slot] = row;
+    };
+    const float* unused[NC];
+    residual(y, unused);
+    // Coarse row J reads fine rows 2J-1 .. 2J+1.
+    for (int J = y / 2; J <= std::min(C.h - 1, (y + 1) / 2); ++J) {
+      const int needed = std::min(F.h - 1, 2 * J + 1) - std::max(0, 2 * J - 1) + 1;
+      if (rows_ready[J].fetch_add(1, std::memory_order_acq_rel) + 1 != needed) continue;
+      const float *north[NC], *centre[NC], *south[NC];
+      residual(2 * J - 1, north);
+      residual(2 * J, centre);
+      residual(2 * J + 1, south);
+      restrict_row(l, J, north, centre, south);
+    }
+  };
+  smooth(l, options_.pre_smooth, false, &restrict_rows);
+  std::fill(levels_[l + 1].e.begin(), levels_[l + 1].e.end(), 0.0f);
   vcycle(l + 1);
-  prolongate_add(l);
-  smooth(l, options_.post_smooth, true, measure);
+  // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
+  // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
+  // operator and can precondition conjugate gradients.
+  const RowHook prolongate = [&](int y) { prolongate_row(l, y); };
+  smooth(l, options_.post_smooth, true, measure, &prolongate);
 }
 
 // Per-channel dot products on the finest level, summed row by row in a fixed order.
@@ -1317,7 +1362,20 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
-    for (int l = 0; l + 1 < count; ++l) restrict_to_coarse(l, &levels_[l].rhs);
+    for (int l = 0; l + 1 < count; ++l) {
+      const Level& L = levels_[l];
+      for_rows(levels_[l + 1].h, levels_[l + 1].w * 2, [&](int J0, int J1) {
+        for (int J = J0; J < J1; ++J) {
+          const float *north[NC], *centre[NC], *south[NC];  // ghost rows beyond the level: 0
+          for (int c = 0; c < NC; ++c) {
+            north[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J - 1)];
+            centre[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J)];
+            south[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J + 1)];
+          }
+          restrict_row(l, J, north, centre, south);
+        }
+      });
+    }
     std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
