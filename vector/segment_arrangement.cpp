@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -89,9 +90,10 @@ bool t_equal(const Split& p, const Split& q) {
   return Int128(p.num) * q.den == Int128(q.num) * p.den;
 }
 
-// Union-find over point ids; the smaller index stays the root, so a class with a segment end in
-// it (ends are numbered before crossings) is represented by an end.
-struct PointClasses {
+// Union-find; the smaller index stays the root (so a class of points with a segment end in it is
+// represented by the end: ends are numbered before crossings).
+struct UnionFind {
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
   std::vector<int> parent;
   int find(int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -315,8 +317,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     for (const Split& s : splits) grouped[fill[s.segment]++] = s;
     splits.swap(grouped);
   }
-  PointClasses classes{std::vector<int>(n_points)};
-  for (int p = 0; p < n_points; ++p) classes.parent[p] = p;
+  UnionFind classes(n_points);
   for (int i = 0; i < n; ++i) {
     const auto first = splits.begin() + split_begin[i], last = splits.begin() + split_begin[i + 1];
     std::sort(first, last, [](const Split& p, const Split& q) {
@@ -331,7 +332,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   for (int p = 0; p < n_points; ++p)
     if (classes.find(p) == p) vertex_of[p] = n_vertices++;
   for (int p = 0; p < n_points; ++p) vertex_of[p] = vertex_of[classes.find(p)];
-  const int n_end_vertices = n_ends == 0 ? 0 : vertex_of[n_ends - 1] + 1;
+  const int n_end_vertices = n_ends;  // every end is its class's root: vertices 0 .. n_ends - 1
 
   // Edges: the pieces between consecutive distinct points of each segment. Pieces of
   // overlapping segments are the same straight edge when their end vertices are.
@@ -403,8 +404,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     cycle_first.push_back(h0);
     for (int h = h0; cycle[h] < 0; h = map.halfedges[h].next) cycle[h] = c;
   }
-  PointClasses components{std::vector<int>(n_vertices)};
-  for (int v = 0; v < n_vertices; ++v) components.parent[v] = v;
+  UnionFind components(n_vertices);
   for (int e = 0; e < n_edges; ++e) components.unite(edge_from[e], edge_to[e]);
   // A component's xy-smallest point is a segment's end (every segment's smallest point is), so
   // its lowest vertex among the ends; the cycle leaving it most counter-clockwise bounds the
@@ -416,8 +416,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     int& l = lowest[components.find(v)];
     if (l < 0 || lex_less(vertex_point[v], vertex_point[l])) l = v;
   }
-  std::vector<int> outside_of(cycle_first.size(),
-                              -1);  // per cycle: the component it bounds outside
+  // Per cycle: the component it bounds from outside, or -1.
+  std::vector<int> outside_of(cycle_first.size(), -1);
   std::vector<int> component_roots;
   for (int v = 0; v < n_vertices; ++v) {
     if (lowest[v] < 0) continue;
