@@ -28,6 +28,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "vector/buckets.hpp"
 #include "vector/planar_map.hpp"
 
 namespace wisp::vector {
@@ -153,13 +154,10 @@ Grid build_grid(const std::vector<Segment>& segs) {
   g.cell = std::max({std::sqrt(w * h / double(segs.size())), std::max(w, h) / 2048, 1.0});
   g.x0 = double(xmin), g.y0 = double(ymin);
   g.nx = int(w / g.cell) + 1, g.ny = int(h / g.cell) + 1;
-  g.begin.assign(size_t(g.nx) * g.ny + 1, 0);
-  for (const Segment& s : segs) g.for_each_cell(s, [&](int c) { ++g.begin[c + 1]; });
-  for (size_t c = 1; c < g.begin.size(); ++c) g.begin[c] += g.begin[c - 1];
-  g.items.resize(g.begin.back());
-  std::vector<int> fill(g.begin.begin(), g.begin.end() - 1);
-  for (int i = 0; i < int(segs.size()); ++i)
-    g.for_each_cell(segs[i], [&](int c) { g.items[fill[c]++] = i; });
+  Buckets<int> cells = bucket<int>(g.nx * g.ny, [&](const auto& put) {
+    for (int i = 0; i < int(segs.size()); ++i) g.for_each_cell(segs[i], [&](int c) { put(c, i); });
+  });
+  g.begin = std::move(cells.begin), g.items = std::move(cells.items);
   return g;
 }
 
@@ -308,15 +306,11 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Splits grouped by segment (stable, so in the order found), then by parameter; equal
   // parameters on a segment are one point.
-  std::vector<int> split_begin(n + 1, 0);
-  {
-    for (const Split& s : splits) ++split_begin[s.segment + 1];
-    for (int i = 0; i < n; ++i) split_begin[i + 1] += split_begin[i];
-    std::vector<Split> grouped(splits.size());
-    std::vector<int> fill(split_begin.begin(), split_begin.end() - 1);
-    for (const Split& s : splits) grouped[fill[s.segment]++] = s;
-    splits.swap(grouped);
-  }
+  Buckets<Split> by_segment = bucket<Split>(n, [&](const auto& put) {
+    for (const Split& s : splits) put(s.segment, s);
+  });
+  const std::vector<int> split_begin = std::move(by_segment.begin);
+  splits = std::move(by_segment.items);
   UnionFind classes(n_points);
   for (int i = 0; i < n; ++i) {
     const auto first = splits.begin() + split_begin[i], last = splits.begin() + split_begin[i + 1];
@@ -376,13 +370,12 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Around each vertex, its outgoing halfedges counter-clockwise; a halfedge's next is the
   // outgoing one clockwise after its twin (the face on its left continues there).
-  std::vector<int> out_begin(n_vertices + 1, 0), out(2 * size_t(n_edges)), out_pos(2 * n_edges);
-  for (int h = 0; h < 2 * n_edges; ++h) ++out_begin[target(h ^ 1) + 1];
-  for (int v = 0; v < n_vertices; ++v) out_begin[v + 1] += out_begin[v];
-  {
-    std::vector<int> fill(out_begin.begin(), out_begin.end() - 1);
-    for (int h = 0; h < 2 * n_edges; ++h) out[fill[target(h ^ 1)]++] = h;
-  }
+  Buckets<int> outgoing = bucket<int>(n_vertices, [&](const auto& put) {
+    for (int h = 0; h < 2 * n_edges; ++h) put(target(h ^ 1), h);
+  });
+  const std::vector<int>& out_begin = outgoing.begin;
+  std::vector<int>& out = outgoing.items;
+  std::vector<int> out_pos(2 * n_edges);
   for (int v = 0; v < n_vertices; ++v) {
     if (out_begin[v + 1] - out_begin[v] > 2)  // two are in order either way round
       std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1],
@@ -539,28 +532,22 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   for (int h = 0; h < 2 * n_edges; ++h) map.halfedges[h].face = face_of_cycle[cycle[h]];
   // Holes, grouped by face in component order.
   {
-    std::vector<int> count(map.faces.size() + 1, 0);
-    for (int m = 0; m < n_components; ++m) ++count[face_of(m) + 1];
-    for (size_t f = 0; f + 1 < count.size(); ++f) count[f + 1] += count[f];
-    for (size_t f = 0; f < map.faces.size(); ++f)
-      map.faces[f].holes_begin = count[f], map.faces[f].holes_end = count[f + 1];
-    map.holes.resize(n_components);
     std::vector<int> outside_cycle(n_components);
     for (int c = 0; c < int(cycle_first.size()); ++c)
       if (outside_of[c] >= 0) outside_cycle[outside_of[c]] = c;
-    for (int m = 0; m < n_components; ++m)
-      map.holes[count[face_of(m)]++] = cycle_first[outside_cycle[m]];
+    Buckets<int> holes = bucket<int>(int(map.faces.size()), [&](const auto& put) {
+      for (int m = 0; m < n_components; ++m) put(face_of(m), cycle_first[outside_cycle[m]]);
+    });
+    for (size_t f = 0; f < map.faces.size(); ++f)
+      map.faces[f].holes_begin = holes.begin[f], map.faces[f].holes_end = holes.begin[f + 1];
+    map.holes = std::move(holes.items);
   }
 
   // Sources per edge, in input order (they were found segment by segment).
-  map.source_begin.assign(n_edges + 1, 0);
-  for (const EdgeSource& s : edge_sources) ++map.source_begin[s.edge + 1];
-  for (int e = 0; e < n_edges; ++e) map.source_begin[e + 1] += map.source_begin[e];
-  map.sources.resize(edge_sources.size());
-  {
-    std::vector<int> fill(map.source_begin.begin(), map.source_begin.end() - 1);
-    for (const EdgeSource& s : edge_sources) map.sources[fill[s.edge]++] = {s.input, s.along};
-  }
+  Buckets<PlanarMap::Source> sources = bucket<PlanarMap::Source>(n_edges, [&](const auto& put) {
+    for (const EdgeSource& s : edge_sources) put(s.edge, {s.input, s.along});
+  });
+  map.source_begin = std::move(sources.begin), map.sources = std::move(sources.items);
 
   // Coordinates: a segment's end as given (so that the resolver's parameters along a segment
   // are its own at its ends, and consecutive pieces abut exactly), a crossing rounded once from

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "vector/buckets.hpp"
 #include "vector/catmull_rom.hpp"
 #include "vector/stroke_fit.hpp"
 
@@ -193,26 +194,6 @@ class Pieces {
   }
 };
 
-// Items grouped by a key in [0, keys) in one array (a stable counting sort): key k's items are
-// items[begin[k]] to items[begin[k + 1]]. `each(put)` calls put(key, item) for every item, the
-// same ones in the same order each time: it runs twice, to count and to fill.
-template <typename T>
-struct Buckets {
-  std::vector<int> begin;
-  std::vector<T> items;
-};
-template <typename T, typename Each>
-Buckets<T> bucket(int keys, const Each& each) {
-  Buckets<T> b;
-  b.begin.assign(std::size_t(keys) + 1, 0);
-  each([&](int key, const T&) { ++b.begin[std::size_t(key) + 1]; });
-  for (int k = 0; k < keys; ++k) b.begin[k + 1] += b.begin[k];
-  b.items.resize(std::size_t(b.begin[keys]));
-  std::vector<int> fill(b.begin.begin(), b.begin.end() - 1);
-  each([&](int key, const T& item) { b.items[std::size_t(fill[key]++)] = item; });
-  return b;
-}
-
 // The outline of a union of same-turning pieces: their edges, minus every edge that another
 // piece traverses the other way, chained into loops of corner indices (`corners` of them). Each
 // loop starts at the lowest corner with an edge left and, where a corner has several, follows
@@ -224,7 +205,7 @@ std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::v
   struct Use {
     int hi, net;
   };
-  Buckets<Use> uses = bucket<Use>(corners, [&](const auto& put) {
+  vector::Buckets<Use> uses = vector::bucket<Use>(corners, [&](const auto& put) {
     for (const auto* set : sets)
       for (const std::vector<int>& piece : *set)
         for (std::size_t i = 0; i < piece.size(); ++i) {
@@ -249,7 +230,7 @@ std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::v
     }
   }
   // Their ends in buckets by their start, each bucket in order.
-  Buckets<int> edges = bucket<int>(corners, [&](const auto& put) {
+  vector::Buckets<int> edges = vector::bucket<int>(corners, [&](const auto& put) {
     for (const Edge& e : left)
       for (int k = 0; k < e.count; ++k) put(e.from, e.to);
   });

@@ -10,11 +10,22 @@
 
 namespace render = wisp::render;
 
-TEST_CASE("streamed frames are the frames loaded whole", "[render]") {
-  const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
+namespace {
+
+const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
+
+// 48x48 frames of the default scene, from its simulated animation.
+render::SceneFramesOptions small_frames() {
   render::SceneFramesOptions o;
   o.anim = wisp::test::simulated(scene);
   o.width = o.height = 48;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("streamed frames are the frames loaded whole", "[render]") {
+  render::SceneFramesOptions o = small_frames();
   const render::SceneFrames whole = render::load_scene_frames(scene, o);
   const auto streamed = render::stream_scene_frames(wisp::io::load_scene(scene), o);
   REQUIRE(streamed->frame_count() == whole.frame_count());
@@ -38,10 +49,7 @@ TEST_CASE("streamed frames are the frames loaded whole", "[render]") {
 }
 
 TEST_CASE("a stream asked for the first frames makes those and frame 1, not the rest", "[render]") {
-  const std::string scene = WISP_SOURCE_DIR "/data/scenes/default.json";
-  render::SceneFramesOptions o;
-  o.anim = wisp::test::simulated(scene);
-  o.width = o.height = 48;
+  render::SceneFramesOptions o = small_frames();
   const render::SceneFrames whole = render::load_scene_frames(scene, o);
   o.needed = 1;  // frame 0 alone, whose motion neighbour is frame 1
   const auto streamed = render::stream_scene_frames(wisp::io::load_scene(scene), o);
