@@ -188,7 +188,7 @@ int run_arrangement(const std::vector<std::string>& args) {
       // CGAL's sweep on the same segments, the peer of ours (sweep_ms), in the same run.
       std::vector<double> cgal_sweep;
       vector::ArrangementOptions cgal = options;
-      cgal.arrange = vector::cgal_segment_arrangement();
+      cgal.arrange = vector::arrange_segments_cgal;
       for (int r = 0; r < repeats; ++r)
         cgal_sweep.push_back(vector::build_arrangement(wisps, cgal).stats.sweep_ms);
       const double ms = median(total);

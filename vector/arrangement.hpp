@@ -65,7 +65,7 @@ struct ArrangementOptions {
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
   // Null: ours (exact predicates on snapped input). `wisp-bench arrangement` passes
-  // cgal_segment_arrangement() to time CGAL's sweep on the same segments.
+  // arrange_segments_cgal to time CGAL's sweep on the same segments.
   SegmentArrangement arrange = nullptr;
 };
 
@@ -137,9 +137,9 @@ struct ExactTopology {
 };
 ExactTopology exact_bezier_topology(const std::vector<Wisp>& wisps);
 
-// CGAL's aggregated sweep over the exact kernel (Epeck), unsnapped, as a SegmentArrangement: the
+// CGAL's aggregated sweep over the exact kernel (Epeck), unsnapped (a SegmentArrangement): the
 // reference our arrangement is tested and benchmarked against. In wisp_vector_exact, like the
 // above.
-SegmentArrangement cgal_segment_arrangement();
+PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments);
 
 }  // namespace wisp::vector

@@ -98,8 +98,4 @@ PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments) {
   return map;
 }
 
-SegmentArrangement cgal_segment_arrangement() {
-  return arrange_segments_cgal;
-}
-
 }  // namespace wisp::vector

@@ -59,9 +59,6 @@ struct PlanarMap {
 // predicates throughout. Zero-length segments (after snapping) are skipped. Deterministic:
 // indices depend only on the input. Throws std::invalid_argument on a non-finite coordinate.
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments);
-
-// The same with CGAL's aggregated sweep over Epeck (exact, unsnapped), in wisp_vector_exact: the
-// reference the tests and `wisp-bench arrangement` compare arrange_segments against.
-PlanarMap arrange_segments_cgal(const std::vector<OutlineSegment>& segments);
+// CGAL's, the reference: arrange_segments_cgal in vector/arrangement.hpp.
 
 }  // namespace wisp::vector

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scenes.hpp"
+#include "vector/arrangement.hpp"
 #include "vector/planar_map.hpp"
 #include "vector/wisp.hpp"
 
