@@ -229,10 +229,11 @@ struct Rasterizer {
   }
 };
 
-}  // namespace
-
-Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
-                  const RasterizeOptions& options, const MeshRaster* meshes) {
+// The rasterizer of the public functions below: pixel (0,0) of the problem is pixel
+// (origin.x, origin.y) of the curves' coordinates.
+Problem rasterize_at(const std::vector<DiffusionCurve>& curves, const Eigen::Vector2d& origin,
+                     int width, int height, const RasterizeOptions& options,
+                     const MeshRaster* meshes) {
   Problem problem = make_open_problem(width, height,
                                       options.blur_only      ? 1
                                       : options.blur_channel ? 4
@@ -245,7 +246,11 @@ Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int heig
   Rasterizer r{curves, problem, meshes, options.neumann, {}, {}, {}};
   for (std::uint32_t k = 0; k < curves.size(); ++k) {
     if (options.blur_only && curves[k].gradient_only) continue;
-    const std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
+    std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
+    // Exact for an integer origin and coordinates within the window, so that the crossings are
+    // the whole image's, shifted.
+    if (origin != Eigen::Vector2d::Zero())
+      for (PathSample& s : poly) s.p -= origin;
     for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);
   }
   if (options.dirichlet == DirichletSampling::NearestClaim)
@@ -260,6 +265,36 @@ Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int heig
     add_gradient_field(problem, r.wx, r.wy);
   }
   return problem;
+}
+
+}  // namespace
+
+Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
+                  const RasterizeOptions& options, const MeshRaster* meshes) {
+  return rasterize_at(curves, Eigen::Vector2d::Zero(), width, height, options, meshes);
+}
+
+Problem rasterize(const std::vector<DiffusionCurve>& curves, const PixelWindow& window,
+                  const RasterizeOptions& options) {
+  return rasterize_at(curves, Eigen::Vector2d(window.x, window.y), window.width, window.height,
+                      options, nullptr);
+}
+
+PixelWindow curves_window(const std::vector<DiffusionCurve>& curves, int width, int height,
+                          int margin, int align) {
+  Eigen::AlignedBox2d box;
+  for (const DiffusionCurve& c : curves)
+    for (const Eigen::Vector2d& p : c.points) box.extend(p);
+  if (box.isEmpty()) return {};
+  const auto down = [align](double v) { return int(std::floor(v / align)) * align; };
+  const auto up = [align](double v) { return int(std::ceil(v / align)) * align; };
+  // Clamped in double first: a curve may reach far outside the image.
+  const int x0 = std::max(0, down(std::max(-1.0, box.min().x() - margin)));
+  const int y0 = std::max(0, down(std::max(-1.0, box.min().y() - margin)));
+  const int x1 = std::min(width, up(std::min(width + 1.0, box.max().x() + margin)));
+  const int y1 = std::min(height, up(std::min(height + 1.0, box.max().y() + margin)));
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
 }
 
 }  // namespace wisp::diffusion

@@ -74,4 +74,28 @@ struct RasterizeOptions {
 Problem rasterize(const std::vector<DiffusionCurve>& curves, int width, int height,
                   const RasterizeOptions& options = {}, const MeshRaster* meshes = nullptr);
 
+// A rectangle of pixels of a larger image: columns [x, x + width), rows [y, y + height).
+struct PixelWindow {
+  int x = 0, y = 0, width = 0, height = 0;
+
+  size_t pixel_count() const { return size_t(width) * size_t(height); }
+  bool operator==(const PixelWindow& o) const {
+    return x == o.x && y == o.y && width == o.width && height == o.height;
+  }
+};
+
+// The problem of the pixels of `window` alone, as if the image ended at the window's edges
+// (links leaving it do not exist: a Neumann border, like the image's own). Its pixel (i, j) is the
+// image's pixel (window.x + i, window.y + j); inside the window the constraints are those that
+// rasterizing the whole image gives there. No gradient meshes.
+Problem rasterize(const std::vector<DiffusionCurve>& curves, const PixelWindow& window,
+                  const RasterizeOptions& options = {});
+
+// The window of a width x height image that holds every curve (its control points, which bound
+// it) with `margin` pixels around, its corners on multiples of `align` pixels (or the image's
+// edges). Empty (all zero) without curves. A solve restricted to it leaves out only pixels that
+// are farther than `margin` from any curve.
+PixelWindow curves_window(const std::vector<DiffusionCurve>& curves, int width, int height,
+                          int margin, int align);
+
 }  // namespace wisp::diffusion

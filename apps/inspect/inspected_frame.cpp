@@ -45,10 +45,11 @@ InspectFrame FrameSource::render(int k) {
   out.time = frames_.anim.frames[k].time;
   render::FrameSetup setup = setup_;
   setup.keep_faces = true;
-  const size_t n = size_t(frames_.projected[k].width) * size_t(frames_.projected[k].height);
-  setup.solver.observer = [&out, n](int, const std::vector<float>& r) {
+  // The residual is of the solve's window (FrameResult::window): its three colour planes.
+  setup.solver.observer = [&out](int, const std::vector<float>& r) {
+    const size_t n = r.size() / 3;
     std::vector<float> magnitude(n, 0.0f);
-    for (size_t c = 0; n > 0 && c < r.size() / n; ++c)
+    for (size_t c = 0; c < 3; ++c)
       for (size_t i = 0; i < n; ++i) magnitude[i] = std::max(magnitude[i], std::abs(r[c * n + i]));
     out.residual.push_back(std::move(magnitude));
   };

@@ -79,14 +79,14 @@ Rgb8 hsv(double h, double s, double v) {
 // A frame-sized ARGB32 raster (premultiplied; 0 is transparent) painted through the view:
 // magnified without smoothing.
 void paint_raster(cairo_t* cr, std::vector<std::uint32_t>& pixels, int width, int height,
-                  const ViewTransform& view, double opacity) {
+                  const ViewTransform& view, double opacity, int x = 0, int y = 0) {
   Surface s(cairo_image_surface_create_for_data(reinterpret_cast<unsigned char*>(pixels.data()),
                                                 CAIRO_FORMAT_ARGB32, width, height, width * 4),
             cairo_surface_destroy);
   cairo_save(cr);
   cairo_translate(cr, view.offset.x(), view.offset.y());
   cairo_scale(cr, view.zoom, view.zoom);
-  cairo_set_source_surface(cr, s.get(), 0, 0);
+  cairo_set_source_surface(cr, s.get(), x, y);
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
   cairo_paint_with_alpha(cr, opacity);
   cairo_restore(cr);
@@ -178,35 +178,38 @@ void draw_mask(cairo_t* cr, const InspectFrame& f, const ViewTransform& t, doubl
 
 void draw_constraints(cairo_t* cr, const InspectFrame& f, const ViewTransform& t, double opacity,
                       cv::Size canvas) {
+  // The problem covers the solve's window (FrameResult::window).
   const diffusion::Problem& p = f.result.problem;
-  if (p.width != f.width() || p.height != f.height()) return;  // nothing was solved
+  const diffusion::PixelWindow& win = f.result.window;
+  if (p.width != win.width || p.height != win.height || p.pixel_count() == 0) return;
   const size_t n = p.pixel_count();
   std::vector<std::uint32_t> px(n, 0);
   for (size_t i = 0; i < n; ++i)
     if (p.fixed[i] || p.anchor_weight[i] > 0)  // anchored: in the anchor value (problem.hpp)
       px[i] = argb({to_byte(p.value[i]), to_byte(p.value[n + i]), to_byte(p.value[2 * n + i])});
-  paint_raster(cr, px, p.width, p.height, t, opacity);
+  paint_raster(cr, px, p.width, p.height, t, opacity, win.x, win.y);
 
   // Cut links (curves cross them: no colour flows there) as the pixel borders they close, once
   // pixels are big enough to see them.
   if (t.zoom < 6) return;
   const Vec2 lo = t.to_frame({0, 0}),
              hi = t.to_frame({double(canvas.width), double(canvas.height)});
-  const int x0 = std::max(0, int(std::floor(lo.x())) - 1),
-            y0 = std::max(0, int(std::floor(lo.y())) - 1);
-  const int x1 = std::min(p.width, int(std::ceil(hi.x())) + 1);
-  const int y1 = std::min(p.height, int(std::ceil(hi.y())) + 1);
+  const int x0 = std::max(0, int(std::floor(lo.x())) - 1 - win.x),
+            y0 = std::max(0, int(std::floor(lo.y())) - 1 - win.y);
+  const int x1 = std::min(p.width, int(std::ceil(hi.x())) + 1 - win.x);
+  const int y1 = std::min(p.height, int(std::ceil(hi.y())) + 1 - win.y);
   const Pen pen{cr, t};
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const std::uint8_t l = p.links[p.index(x, y)];
+      const double X = win.x + x, Y = win.y + y;
       if (x + 1 < p.width && !(l & diffusion::kOpenEast)) {
-        pen.move({x + 1.0, double(y)});
-        pen.line({x + 1.0, y + 1.0});
+        pen.move({X + 1, Y});
+        pen.line({X + 1, Y + 1});
       }
       if (y + 1 < p.height && !(l & diffusion::kOpenSouth)) {
-        pen.move({double(x), y + 1.0});
-        pen.line({x + 1.0, y + 1.0});
+        pen.move({X, Y + 1});
+        pen.line({X + 1, Y + 1});
       }
     }
   pen.stroke(kCutLinkColor, 2.0);
@@ -217,10 +220,12 @@ void draw_residual(cairo_t* cr, const InspectFrame& f, const LayerSet& layers,
   const int step = residual_step(f, layers);
   if (step < 0) return;
   const std::vector<float>& r = f.residual[step];
+  const diffusion::PixelWindow& win = f.result.window;  // the residual covers it
+  if (r.size() != win.pixel_count() || r.empty()) return;
   std::vector<std::uint32_t> px(r.size(), 0);
   for (size_t i = 0; i < r.size(); ++i)
     if (r[i] > 0) px[i] = argb(residual_color(r[i]));
-  paint_raster(cr, px, f.width(), f.height(), t, opacity);
+  paint_raster(cr, px, win.width, win.height, t, opacity, win.x, win.y);
 }
 
 void draw_outlines(const Pen& pen, const InspectFrame& f) {

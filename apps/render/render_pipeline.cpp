@@ -75,6 +75,36 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
   return diffusion::antialias(curves, hair.width, hair.height, solved, hair.planes, &region);
 }
 
+// The colour solve's window around the curves (see render_solve).
+constexpr int kWindowMargin = 8;
+constexpr int kWindowAlign = 32;
+
+// The pixels of `window` from `channels` planes of a width x height image (and no more planes).
+std::vector<float> window_planes(const std::vector<float>& image, int channels, int width,
+                                 int height, const diffusion::PixelWindow& window) {
+  const size_t n = size_t(width) * height, m = window.pixel_count();
+  std::vector<float> out(channels * m);
+  for (int c = 0; c < channels; ++c)
+    for (int y = 0; y < window.height; ++y) {
+      const float* from = &image[c * n + size_t(window.y + y) * width + window.x];
+      std::copy(from, from + window.width, &out[c * m + size_t(y) * window.width]);
+    }
+  return out;
+}
+
+// The inverse: planes of `window` placed in planes of a width x height image, 0 outside.
+std::vector<float> image_planes(const std::vector<float>& planes, int channels,
+                                const diffusion::PixelWindow& window, int width, int height) {
+  const size_t n = size_t(width) * height, m = window.pixel_count();
+  std::vector<float> out(channels * n, 0.0f);
+  for (int c = 0; c < channels; ++c)
+    for (int y = 0; y < window.height; ++y) {
+      const float* from = &planes[c * m + size_t(y) * window.width];
+      std::copy(from, from + window.width, &out[c * n + size_t(window.y + y) * width + window.x]);
+    }
+  return out;
+}
+
 }  // namespace
 
 FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
@@ -163,30 +193,35 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
   FramePicture& pic = r.picture;
   const int W = pic.width, H = pic.height;
   if (!r.curves.empty()) {
+    // Only the pixels near the curves are solved: the hair is shown through its mask, and the
+    // anti-aliasing takes a pixel's colours from inside the mask only, so the solution is never
+    // seen farther than a pixel from a visible curve. The margin leaves room to spare; window
+    // corners on a 32-pixel lattice keep the size from frame to frame while the hair moves, so
+    // the solver's setup stays incremental.
+    r.window = setup.whole_image_solve
+                   ? diffusion::PixelWindow{0, 0, W, H}
+                   : diffusion::curves_window(r.curves, W, H, kWindowMargin, kWindowAlign);
+    const diffusion::PixelWindow& win = r.window;
     // Rasterized here rather than with the geometry: frames waiting to be shaded do not hold
     // their constraints (18 MB at 1024^2).
     auto t0 = Clock::now();
-    r.problem = diffusion::rasterize(r.curves, W, H);
+    r.problem = diffusion::rasterize(r.curves, win);
     r.time.rasterize = ms_since(t0);
     t0 = Clock::now();
     // The warm start holds the colours, then the previous blur map when there was one.
-    const size_t n = r.problem.pixel_count();
+    const size_t n = size_t(W) * H;
     const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);
-    std::vector<float> warm_colours, warm_blur;
-    if (warm && warm_start->size() == 4 * n) {
-      warm_colours.assign(warm_start->begin(), warm_start->begin() + 3 * n);
-      warm_blur.assign(warm_start->begin() + 3 * n, warm_start->end());
-    }
-    diffusion::Solution s = diffusion::solve_multigrid(r.problem, setup.solver,
-                                                       !warm                  ? nullptr
-                                                       : warm_colours.empty() ? warm_start
-                                                                              : &warm_colours);
+    const std::vector<float> warm_colours =
+        warm ? window_planes(*warm_start, 3, W, H, win) : std::vector<float>();
+    diffusion::Solution s =
+        diffusion::solve_multigrid(r.problem, setup.solver, warm ? &warm_colours : nullptr);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     // The constraints are done with (the inspector shows them), before the images below.
     if (!setup.keep_faces) r.problem = {};
-    warm_colours = {};
-    r.solution = std::move(s.planes);  // the next frame's warm start: the plain solve
+    // The next frame's warm start: the plain solve.
+    r.solution = image_planes(s.planes, 3, win, W, H);
+    s.planes = {};
     // The picture's own copy, since anti-aliasing changes it and not the warm start; anti-aliasing
     // reads the plain solve and writes the copy, so no third image is made.
     pic.hair = {W, H, r.solution};
@@ -194,8 +229,13 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
     const std::vector<diffusion::DiffusionCurve> blurred = vector::blur_curves(
         frame, r.wisps, r.arrangement, setup.style.blur, {setup.lens, neighbour});
     if (!blurred.empty()) {
+      // The whole image: the blur spreads the hair beyond its mask, where the map is read.
+      const bool warm_blur = warm && warm_start->size() == 4 * n;
+      const std::vector<float> previous_blur =
+          warm_blur ? std::vector<float>(warm_start->begin() + 3 * n, warm_start->end())
+                    : std::vector<float>();
       diffusion::Solution b = diffusion::solve_blur_map(blurred, W, H, setup.solver,
-                                                        warm_blur.empty() ? nullptr : &warm_blur);
+                                                        warm_blur ? &previous_blur : nullptr);
       pic.blur = std::move(b.planes);
       r.solution.insert(r.solution.end(), pic.blur.begin(), pic.blur.end());
       r.time.blur = ms_since(t0);

@@ -5,9 +5,8 @@
 //   wisps for toon bands and highlights (vector/hair_curves) -> rasterize + multigrid solve
 //   (diffusion/, warm-started from the previous frame) -> layers of an FramePicture, with
 //   ink strokes along the silhouette and occlusion lines (vector/ink_strokes), and, when the
-//   style or the lens blurs, the blur map of the outlines' blur values (vector/hair_blur).
-//   ink strokes along the silhouette and occlusion lines (vector/ink_strokes) and hatch strokes
-//   in the hair's shadows (vector/hatching).
+//   style or the lens blurs, the blur map of the outlines' blur values (vector/hair_blur), and
+//   hatch strokes in the hair's shadows (vector/hatching).
 // Used by `wisp render` for every frame and by the inspector for the one it shows.
 #pragma once
 
@@ -18,6 +17,7 @@
 #include "apps/render/picture.hpp"
 #include "diffusion/antialias.hpp"
 #include "diffusion/multigrid.hpp"
+#include "diffusion/rasterize.hpp"
 #include "sim/projected.hpp"
 #include "vector/arrangement.hpp"
 #include "vector/hair_blur.hpp"
@@ -32,10 +32,11 @@ struct FrameSetup {
   vector::HairStyle style;
   diffusion::SolverOptions solver;
   Rgb background{1, 1, 1};
-  bool keep_faces = false;    // keep the arrangement's faces in FrameResult (the inspector)
-  bool flat_regions = false;  // compute the per-wisp regions of flat SVGs
-  bool antialias = true;      // mix both sides' colours where visible curves cross pixels
-  vector::Lens lens;          // depth of field (vector/hair_blur.hpp); aperture 0: none
+  bool keep_faces = false;         // keep the arrangement's faces in FrameResult (the inspector)
+  bool flat_regions = false;       // compute the per-wisp regions of flat SVGs
+  bool antialias = true;           // mix both sides' colours where visible curves cross pixels
+  bool whole_image_solve = false;  // solve every pixel, not the curves' window (for comparison)
+  vector::Lens lens;               // depth of field (vector/hair_blur.hpp); aperture 0: none
 };
 
 // Milliseconds per stage.
@@ -58,6 +59,10 @@ struct FrameResult {
   std::vector<vector::InkCurve> ink;              // the strokes of picture.ink, as fitted
   std::vector<vector::HatchStroke> hatching;      // picture.hatching's on the hair, then
   std::vector<BodyHatch> body_hatching;           // its strokes on the body
+  // The pixels the colour solve covered: the curves' window (see render_solve). The problem and
+  // the solver's residuals are of its size; the solution outside it is 0, since the hair mask
+  // and the anti-aliasing never show a pixel that far from every curve.
+  diffusion::PixelWindow window;
   diffusion::Problem problem;  // the rasterized constraints (inspector): only with keep_faces
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;

@@ -489,3 +489,48 @@ TEST_CASE("the second-order boundary converges at second order between two circl
     }
   }
 }
+
+TEST_CASE("a window's problem is the whole image's inside it, with its own edges as the border",
+          "[rasterize]") {
+  // Circles at fractional places, one of them crossing the window's edge, another outside it.
+  const Color red(1, 0, 0), blue(0, 0, 1);
+  const std::vector<DiffusionCurve> curves = {circle(40.3, 37.7, 15.2, red, blue),
+                                              circle(61.5, 20.25, 9.9, blue, red),
+                                              circle(9.6, 70.1, 6.3, red, red)};
+  const Problem whole = rasterize(curves, 96, 96);
+  const PixelWindow window{20, 16, 48, 40};
+  const Problem part = rasterize(curves, window);
+  REQUIRE(part.width == window.width);
+  REQUIRE(part.height == window.height);
+  const size_t n = whole.pixel_count(), m = part.pixel_count();
+  int anchored = 0;
+  for (int y = 0; y < part.height; ++y)
+    for (int x = 0; x < part.width; ++x) {
+      const size_t i = part.index(x, y), j = whole.index(window.x + x, window.y + y);
+      INFO("window pixel " << x << "," << y);
+      REQUIRE(part.fixed[i] == whole.fixed[j]);
+      REQUIRE(part.anchor_weight[i] == whole.anchor_weight[j]);
+      for (int c = 0; c < 3; ++c) REQUIRE(part.value[c * m + i] == whole.value[c * n + j]);
+      // Links leaving the window do not exist; the others are the whole image's.
+      const std::uint8_t border = std::uint8_t((x + 1 < part.width ? kOpenEast : 0) |
+                                               (y + 1 < part.height ? kOpenSouth : 0));
+      REQUIRE(part.links[i] == (whole.links[j] & border));
+      anchored += part.anchor_weight[i] > 0;
+    }
+  CHECK(anchored > 50);  // the circles do cross the window
+}
+
+TEST_CASE("the curves' window holds every curve with its margin, on the lattice, in the image",
+          "[rasterize]") {
+  CHECK(curves_window({}, 100, 100, 8, 32) == PixelWindow{});
+  const Color c(1, 1, 1);
+  // A circle's control points span [x - r, x + r] x [y - r, y + r]; 8 more each side, then out
+  // to multiples of 32: [32.5, 68.5] x [22, 58] -> [32, 96) x [0, 64).
+  CHECK(curves_window({circle(50.5, 40, 10, c, c)}, 200, 150, 8, 32) == PixelWindow{32, 0, 64, 64});
+  CHECK(curves_window({circle(120, 100, 10, c, c)}, 200, 150, 8, 32) ==
+        PixelWindow{96, 64, 64, 64});
+  // Reaching outside the image: clipped to it.
+  CHECK(curves_window({circle(190, -20, 30, c, c)}, 200, 150, 8, 32) ==
+        PixelWindow{128, 0, 72, 32});
+  CHECK(curves_window({circle(300, 300, 10, c, c)}, 200, 150, 8, 32) == PixelWindow{});
+}

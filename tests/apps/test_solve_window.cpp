@@ -1,0 +1,73 @@
+// The colour solve covers only the curves' window (render_solve): the finished frames are those of
+// a solve over the whole image, up to the solver's own error (a step of 1/255 in a few pixels),
+// for a cold frame and for the warm-started frame after it, while the window holds well under the
+// image's pixels (so the comparison covers a real cut).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "apps/render/render_pipeline.hpp"
+#include "apps/render/scene_frames.hpp"
+#include "scene_fixture.hpp"
+
+namespace render = wisp::render;
+namespace diffusion = wisp::diffusion;
+
+namespace {
+
+const std::string kScene = WISP_SOURCE_DIR "/data/scenes/bob.json";
+constexpr int kSize = 320;
+
+render::FrameResult render_at(const render::SceneFrames& sf, int k, bool whole,
+                              const std::vector<float>* warm) {
+  render::FrameSetup setup = render::frame_setup(sf.scene);
+  setup.whole_image_solve = whole;
+  return render::render_frame(sf.projected[k], render::frame_body(sf, k),
+                              render::frame_occluders(sf, k), render::frame_base(sf, k), setup,
+                              warm);
+}
+
+}  // namespace
+
+TEST_CASE("solving the curves' window alone changes no pixel beyond the solver's error",
+          "[render]") {
+  const render::SceneFrames& sf = wisp::test::loaded_scene(kScene, kSize);
+  const int k = wisp::test::five_angles(sf.anim)[2];
+  const render::FrameResult cold_window = render_at(sf, k, false, nullptr);
+  const render::FrameResult cold_whole = render_at(sf, k, true, nullptr);
+  const render::FrameResult warm_window = render_at(sf, k + 1, false, &cold_window.solution);
+  const render::FrameResult warm_whole = render_at(sf, k + 1, true, &cold_whole.solution);
+
+  const diffusion::PixelWindow& w = cold_window.window;
+  CHECK(w.pixel_count() < 0.8 * kSize * kSize);
+  CHECK(cold_whole.window == diffusion::PixelWindow{0, 0, kSize, kSize});
+  for (const auto* pair : {&cold_window, &warm_window}) {
+    const render::FrameResult& a = *pair;
+    const render::FrameResult& b = pair == &cold_window ? cold_whole : warm_whole;
+    const std::vector<std::uint8_t> pa = render::rasterize_frame(a.picture),
+                                    pb = render::rasterize_frame(b.picture);
+    REQUIRE(pa.size() == pb.size());
+    int differ = 0, largest = 0;
+    for (size_t i = 0; i < pa.size(); ++i) {
+      const int d = std::abs(int(pa[i]) - int(pb[i]));
+      differ += d > 0;
+      largest = std::max(largest, d);
+    }
+    INFO((pair == &cold_window ? "cold" : "warm") << " frame: " << differ << " bytes differ");
+    CHECK(largest <= 1);
+    CHECK(differ <= int(pa.size() / 1000));
+    // Outside the window the solution is 0: nothing was solved there.
+    const diffusion::PixelWindow& v = a.window;
+    int outside = 0, nonzero = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        if (x >= v.x && x < v.x + v.width && y >= v.y && y < v.y + v.height) continue;
+        ++outside;
+        for (int c = 0; c < 3; ++c)
+          nonzero += a.solution[size_t(c) * kSize * kSize + y * kSize + x] != 0;
+      }
+    CHECK(outside > 0);
+    CHECK(nonzero == 0);
+  }
+}
