@@ -162,24 +162,31 @@ std::vector<std::array<std::array<int, 2>, 9>> neighbour_orders(int n) {
   return orders;
 }
 
+// A segment near the pixel being re-sampled, copied out of the list (which is indexed and ordered
+// like `local` below) so that the inner loops read contiguous memory.
+struct LocalSegment {
+  Vector2d a, b, d;  // d = b - a
+  double len2;       // |d|^2
+  int k, curve;      // index in the segment list, Segment::curve
+};
+
 // The point of the local segments nearest to q: which segment, where along it, how far.
 struct NearestPoint {
   const Segment* segment = nullptr;
   double along = 0, distance = std::numeric_limits<double>::infinity();
 };
 
-NearestPoint nearest_point(const Vector2d& q, const std::vector<int>& local,
+NearestPoint nearest_point(const Vector2d& q, const std::vector<LocalSegment>& local,
                            const std::vector<Segment>& segments, int only_curve = -1) {
   NearestPoint best;
-  for (int k : local) {
-    const Segment& g = segments[k];
+  double best2 = std::numeric_limits<double>::infinity();
+  for (const LocalSegment& g : local) {
     if (only_curve >= 0 && g.curve != only_curve) continue;
-    const Vector2d d = g.b - g.a;
-    const double len2 = d.squaredNorm();
-    const double f = len2 > 0 ? std::clamp((q - g.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    const double dist = (g.a + f * d - q).norm();
-    if (dist < best.distance) best = {&g, f, dist};
+    const double f = g.len2 > 0 ? std::clamp((q - g.a).dot(g.d) / g.len2, 0.0, 1.0) : 0.0;
+    const double dist2 = (g.a + f * g.d - q).squaredNorm();
+    if (dist2 < best2) best2 = dist2, best.segment = &segments[g.k], best.along = f;
   }
+  best.distance = std::sqrt(best2);
   return best;
 }
 
@@ -249,6 +256,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   std::vector<long> resampled(size_t(height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<int> local;
+    std::vector<LocalSegment> near, blockers;
     struct CentreDistance {
       size_t centre;
       int curve;
@@ -269,13 +277,30 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           }
         std::sort(local.begin(), local.end());
         local.erase(std::unique(local.begin(), local.end()), local.end());
+        // The paths from a sub-sample to the centres it may take stay in the box from p's corner
+        // (x - 1/2, y - 1/2) to (x + 3/2, y + 3/2): only segments whose own box meets it can
+        // block one (with a margin far above rounding, so no test's answer changes).
+        near.clear();
+        blockers.clear();
+        const Vector2d reach_lo(x - 0.5 - 1e-6, y - 0.5 - 1e-6),
+            reach_hi(x + 1.5 + 1e-6, y + 1.5 + 1e-6);
+        for (int k : local) {
+          const Segment& g = segments[k];
+          const Vector2d d = g.b - g.a;
+          near.push_back({g.a, g.b, d, d.squaredNorm(), k, g.curve});
+          if (std::max(g.a.x(), g.b.x()) >= reach_lo.x() &&
+              std::min(g.a.x(), g.b.x()) <= reach_hi.x() &&
+              std::max(g.a.y(), g.b.y()) >= reach_lo.y() &&
+              std::min(g.a.y(), g.b.y()) <= reach_hi.y())
+            blockers.push_back(near.back());
+        }
 
         // A centre's distance to a curve, once per pixel: its sub-samples share a few of them.
         centre_distances.clear();
         const auto centre_distance = [&](const Vector2d& centre, size_t c, int curve) {
           for (const CentreDistance& d : centre_distances)
             if (d.centre == c && d.curve == curve) return d.distance;
-          const double d = nearest_point(centre, local, segments, curve).distance;
+          const double d = nearest_point(centre, near, segments, curve).distance;
           centre_distances.push_back({c, curve, d});
           return d;
         };
@@ -285,7 +310,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         // (the linear profile that the solve's boundary rule assumes along a link).
         const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, size_t c) {
           const Color solved(source[c], source[n_pixels + c], source[2 * n_pixels + c]);
-          const NearestPoint at = nearest_point(q, local, segments);
+          const NearestPoint at = nearest_point(q, near, segments);
           Color wall;
           if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
           const double from_centre = centre_distance(centre, c, at.segment->curve);
@@ -303,9 +328,9 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             const int cx = x + dx, cy = y + dy;
             if (cx < 0 || cy < 0 || cx >= width || cy >= height) continue;
             const Vector2d centre(cx + 0.5, cy + 0.5);
-            const bool blocked = std::any_of(local.begin(), local.end(), [&](int k) {
-              return meet(q, centre, segments[k].a, segments[k].b);
-            });
+            const bool blocked =
+                std::any_of(blockers.begin(), blockers.end(),
+                            [&](const LocalSegment& g) { return meet(q, centre, g.a, g.b); });
             const size_t c = size_t(cy) * width + cx;
             // A centre outside the shown area holds no colour of it (the region's edge is not
             // always a curve: the head hides hair along its own outline).
@@ -317,7 +342,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           }
           if (reached) continue;
           // A sliver with no pixel centre: the side of the nearest curve that faces q.
-          const NearestPoint at = nearest_point(q, local, segments);
+          const NearestPoint at = nearest_point(q, near, segments);
           Color colour;
           if (at.segment && facing_colour(curves, at, q, colour)) {
             sum += colour;
