@@ -17,13 +17,24 @@ SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& c
     : world_(std::move(triangles)), camera_(camera), with_folds_(with_folds) {
   box_.setEmpty();
   pixel_.reserve(world_.size());
+  reach_.reserve(world_.size());
+  constexpr double kMargin = 1e-4;  // pixels
   for (const Eigen::Matrix3d& t : world_) {
     std::array<Vector2d, 3> px;
+    Eigen::AlignedBox2d b;
+    bool ahead = true;
     for (int c = 0; c < 3; ++c) {
       px[c] = camera_.project(t.col(c));
       box_.extend(px[c]);
+      b.extend(px[c]);
+      ahead &= (t.col(c) - camera_.eye).dot(camera_.forward) > 1e-3;
     }
     pixel_.push_back(px);
+    if (ahead)
+      reach_.push_back({b.min().x() - kMargin, b.min().y() - kMargin, b.max().x() + kMargin,
+                        b.max().y() + kMargin});
+    else
+      reach_.push_back({-INFINITY, -INFINITY, INFINITY, INFINITY});
   }
   cells_ = std::clamp(int(std::sqrt(double(world_.size()))), 1, 64);
   first_.assign(size_t(cells_) * cells_ + 1, 0);
@@ -113,6 +124,8 @@ std::pair<int, double> SurfaceRays::first_hit(const Vector2d& p) const {
                    cell(p.x(), box_.min().x(), box_.max().x());
   for (int k = first_[c]; k < first_[c + 1]; ++k) {
     const int t = binned_[size_t(k)];
+    const std::array<double, 4>& r = reach_[size_t(t)];
+    if (p.x() < r[0] || p.y() < r[1] || p.x() > r[2] || p.y() > r[3]) continue;
     const double d =
         ray_triangle(camera_.eye, dir, world_[t].col(0), world_[t].col(1), world_[t].col(2));
     if (d > 0 && d < best) best = d, hit = t;

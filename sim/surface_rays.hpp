@@ -56,6 +56,10 @@ class SurfaceRays {
   // The triangles meeting each cell of the grid, in order: cell c's are
   // binned_[first_[c]] to binned_[first_[c + 1]] (one array, not a vector per cell).
   std::vector<int> first_, binned_;
+  // Per triangle, its projected box grown by a margin far above rounding (empty-handed rays
+  // skip the 3D test), or an unbounded box when a corner lies behind the eye (where the
+  // projection does not hold).
+  std::vector<std::array<double, 4>> reach_;  // x0, y0, x1, y1
   bool with_folds_ = false;
   // Filled once, by the first max_depth (which may be called from several threads).
   mutable std::once_flag folds_found_;
