@@ -39,7 +39,7 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
           {"solve_window", {r.window.x, r.window.y, r.window.width, r.window.height}},
           {"solver_cycles", r.solve.cycles},
           {"solver_residual", r.solve.final_residual},
-          {"solver_converged", r.solve.converged || r.curves.empty()},
+          {"solver_converged", r.solve.converged || r.window.pixel_count() == 0},
           {"antialiased_pixels", r.antialias.pixels},
           {"ms",
            {{"body", r.time.body},

@@ -13,6 +13,7 @@
 
 namespace render = wisp::render;
 namespace diffusion = wisp::diffusion;
+namespace sim = wisp::sim;
 
 namespace {
 
@@ -70,4 +71,24 @@ TEST_CASE("solving the curves' window alone changes no pixel beyond the solver's
     CHECK(outside > 0);
     CHECK(nonzero == 0);
   }
+}
+
+TEST_CASE("a frame whose hair lies outside the picture solves nothing and shows no hair",
+          "[render]") {
+  const render::SceneFrames& sf = wisp::test::loaded_scene(kScene, kSize);
+  const int k = wisp::test::five_angles(sf.anim)[2];
+  sim::ProjectedFrame away = sf.projected[k];
+  for (sim::ProjectedStrand& s : away.strands)
+    for (Eigen::Vector2d& p : s.pixel) p.x() += 4 * kSize;  // far to the right
+  const render::FrameSetup setup = render::frame_setup(sf.scene);
+  const render::FrameResult r = render::render_frame(away, {}, {}, {}, setup, nullptr);
+  CHECK(r.window.pixel_count() == 0);
+  CHECK(r.solve.cycles == 0);
+  // Nothing solved: no warm start for the next frame, or one of zeros.
+  CHECK(std::all_of(r.solution.begin(), r.solution.end(), [](float v) { return v == 0.0f; }));
+  CHECK(r.picture.mask.polygons.empty());
+  // The next frame, back in the picture, starts from that.
+  const render::FrameResult next = render_at(sf, k, false, &r.solution);
+  CHECK(next.window.pixel_count() > 0);
+  CHECK(next.solve.converged);
 }
