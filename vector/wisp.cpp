@@ -44,13 +44,14 @@ void check_strand(const sim::ProjectedStrand& s) {
   check_size(s.visible.size(), "visible", true);
   check_size(s.width.size(), "width", true);
   for (size_t i = 0; i < n; ++i) {
-    const std::string at = "sample " + std::to_string(i) + ": ";
-    if (!s.pixel[i].allFinite()) fail(s, at + "pixel is not finite");
+    // The message's prefix is made only for a failure (most samples pass).
+    auto at = [i] { return "sample " + std::to_string(i) + ": "; };
+    if (!s.pixel[i].allFinite()) fail(s, at() + "pixel is not finite");
     if (!std::isfinite(s.depth[i]) || s.depth[i] <= 0)
-      fail(s, at + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
-    if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at + "tangent is not finite");
+      fail(s, at() + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
+    if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at() + "tangent is not finite");
     if (!s.width.empty() && !(std::isfinite(s.width[i]) && s.width[i] >= 0))
-      fail(s, at + "width must be finite and >= 0, got " + std::to_string(s.width[i]));
+      fail(s, at() + "width must be finite and >= 0, got " + std::to_string(s.width[i]));
   }
 }
 
@@ -268,63 +269,75 @@ struct Extruder {
     // Per g, the segments from g on (before g) within kStraight of turning end at ahead (behind).
     int ahead = 0, behind = 0;
 
-    width.assign(n, {0, 0});
+    // The scans read plain arrays and keep the widths in two locals: with the table's vectors
+    // and the style behind references, each store to a width made the compiler load them again.
+    const double clamp = style.curvature_clamp;
+    const Vector2d *b_at = b.data(), *normal_at = normal.data(), *centre_at = centre.data();
+    const double *arc_at = arc.data(), *free_at = free.data(), *radius_at = radius.data();
+    const double* turning_at = turning.data();
+    const int* tight_at = tight.data();
+    const int tight_count = int(tight.size());
+    width.resize(n);
     for (int g = 0; g < n; ++g) {
-      std::array<double, 2> h = {free[g], free[g]};
-      auto widest = [&] { return std::max(h[0], h[1]); };
-      auto lower = [&](int side, double cap) {
-        if (cap < h[side]) h[side] = cap;
+      double left = free_at[g], right = free_at[g];
+      const Vector2d bg = b_at[g], ng = normal_at[g];
+      const double ag = arc_at[g], fg = free_at[g];
+      auto lower = [&](bool on_left, double cap) {  // on_left: towards +N
+        if (on_left) {
+          if (cap < left) left = cap;
+        } else if (cap < right) {
+          right = cap;
+        }
       };
       // Centres of curvature on each side, within twice the free width along the curve: only
       // the tight ones can lower a width. A centre of radius R at arc distance a lies at least
       // R - a away.
-      while (next_tight < int(tight.size()) && tight[next_tight] <= g) ++next_tight;
+      while (next_tight < tight_count && tight_at[next_tight] <= g) ++next_tight;
       for (int dir : {-1, +1}) {
-        for (int t = dir < 0 ? next_tight - 1 : next_tight; t >= 0 && t < int(tight.size());
-             t += dir) {
-          const int j = tight[t];
-          if (!(std::abs(arc[j] - arc[g]) <= 2 * free[g])) break;
-          if (style.curvature_clamp * (radius[j] - std::abs(arc[j] - arc[g]) - slack) >= widest())
+        for (int t = dir < 0 ? next_tight - 1 : next_tight; t >= 0 && t < tight_count; t += dir) {
+          const int j = tight_at[t];
+          if (!(std::abs(arc_at[j] - ag) <= 2 * fg)) break;
+          if (clamp * (radius_at[j] - std::abs(arc_at[j] - ag) - slack) >= std::max(left, right))
             continue;
-          const Vector2d to = centre[j] - b[g];
-          lower(to.dot(normal[g]) > 0 ? 0 : 1, style.curvature_clamp * to.norm());  // left: +N
+          const Vector2d to = centre_at[j] - bg;
+          lower(to.dot(ng) > 0, clamp * to.norm());
         }
       }
       // Folds: where the curve bends back (a sharp V, the next arch of a coil), a point of it
       // ahead of this side (within 60 degrees of the normal) that is much nearer in space than
       // along the curve; each of the two passes may take half the gap.
-      for (ahead = std::max(ahead, g); ahead < n - 1 && turning[ahead] <= turning[g] + kStraight;)
+      for (ahead = std::max(ahead, g);
+           ahead < n - 1 && turning_at[ahead] <= turning_at[g] + kStraight;)
         ++ahead;
-      while (g > 0 && behind < g - 1 && turning[behind] < turning[g - 1] - kStraight) ++behind;
+      while (g > 0 && behind < g - 1 && turning_at[behind] < turning_at[g - 1] - kStraight)
+        ++behind;
       for (int dir : {-1, +1}) {
         // The first sample past the straight stretch from g.
         const int straight_end = dir > 0 ? (ahead < n - 1 ? ahead + 1 : n)
                                  : g > 0 ? behind - 1
                                          : -1;
         int block = -1;
-        for (int j = g + dir; j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 8 * free[g];
-             j += dir) {
-          if ((j - straight_end) * dir < 0 && std::abs(arc[j] - arc[g]) > slack) {
+        for (int j = g + dir; j >= 0 && j < n && std::abs(arc_at[j] - ag) <= 8 * fg; j += dir) {
+          if ((j - straight_end) * dir < 0 && std::abs(arc_at[j] - ag) > slack) {
             j = straight_end - dir;
             continue;
           }
           if (const int k = j / kWidthSamples; k != block) {
             block = k;
             // Half the gap to any sample of the block cannot lower either side.
-            const double far = widest() * (2 / style.curvature_clamp) + slack;
-            if (box[k].squaredExteriorDistance(b[g]) >= far * far) {
+            const double far = std::max(left, right) * (2 / clamp) + slack;
+            if (box[k].squaredExteriorDistance(bg) >= far * far) {
               j = past_block(k, dir);
               continue;
             }
           }
-          const Vector2d to = b[j] - b[g];
-          const double gap = to.norm(), along = to.dot(normal[g]);
-          if (std::abs(arc[j] - arc[g]) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
-          lower(along > 0 ? 0 : 1, 0.5 * style.curvature_clamp * gap);
+          const Vector2d to = b_at[j] - bg;
+          const double gap = to.norm(), along = to.dot(ng);
+          if (std::abs(arc_at[j] - ag) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
+          lower(along > 0, 0.5 * clamp * gap);
         }
       }
-      for (double& x : h) x = x < 1e-9 ? 0.0 : x;
-      width[g] = h;
+      width[g] = {left < 1e-9 ? 0.0 : left, right < 1e-9 ? 0.0 : right};
     }
   }
 
