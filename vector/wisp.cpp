@@ -44,13 +44,14 @@ void check_strand(const sim::ProjectedStrand& s) {
   check_size(s.visible.size(), "visible", true);
   check_size(s.width.size(), "width", true);
   for (size_t i = 0; i < n; ++i) {
-    const std::string at = "sample " + std::to_string(i) + ": ";
-    if (!s.pixel[i].allFinite()) fail(s, at + "pixel is not finite");
+    // The message's prefix is made only for a failure (most samples pass).
+    auto at = [i] { return "sample " + std::to_string(i) + ": "; };
+    if (!s.pixel[i].allFinite()) fail(s, at() + "pixel is not finite");
     if (!std::isfinite(s.depth[i]) || s.depth[i] <= 0)
-      fail(s, at + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
-    if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at + "tangent is not finite");
+      fail(s, at() + "depth must be finite and > 0, got " + std::to_string(s.depth[i]));
+    if (!s.tangent.empty() && !s.tangent[i].allFinite()) fail(s, at() + "tangent is not finite");
     if (!s.width.empty() && !(std::isfinite(s.width[i]) && s.width[i] >= 0))
-      fail(s, at + "width must be finite and >= 0, got " + std::to_string(s.width[i]));
+      fail(s, at() + "width must be finite and >= 0, got " + std::to_string(s.width[i]));
   }
 }
 
@@ -122,21 +123,35 @@ void square_caps(std::vector<CentrePoint>& points, double focal_px, const WispSt
 // (a sharp V, neighbouring arches of a coil): half the gap to a part of the curve that faces this
 // side and is much nearer in space than along the curve. Self-crossings of the centre curve
 // itself (loops of a coil seen edge-on) are left to overlap: the arrangement counts windings.
+//
+// The arrays live in an ExtruderArrays that the wisps of a frame share, so that a wisp does not
+// allocate them again.
+struct ExtruderArrays {
+  std::vector<std::array<double, 2>> width;
+  std::vector<double> scale;
+  // limit_widths' per-sample table and bounds.
+  std::vector<Vector2d> b, normal, centre;
+  std::vector<char> has_centre;
+  std::vector<double> arc, free, radius, turning;
+  std::vector<Eigen::AlignedBox2d> box;
+  std::vector<int> tight;
+};
+
 struct Extruder {
   const std::vector<Span>& spans;
   const WispStyle& style;
   double focal_px;
-  std::vector<std::array<double, 2>> width;  // [span * kWidthSamples + j] = {left, right}
-  std::vector<double> scale;                 // per span: its control polygon's length
+  std::vector<std::array<double, 2>>& width;  // [span * kWidthSamples + j] = {left, right}
+  std::vector<double>& scale;                 // per span: its control polygon's length
 
-  Extruder(const std::vector<Span>& s, const WispStyle& st, double f)
-      : spans(s), style(st), focal_px(f) {
-    scale.reserve(s.size());
+  Extruder(const std::vector<Span>& s, const WispStyle& st, double f, ExtruderArrays& arrays)
+      : spans(s), style(st), focal_px(f), width(arrays.width), scale(arrays.scale) {
+    scale.clear();
     for (const Span& span : s) {
       const Cubic& c = span.b;
       scale.push_back((c[3] - c[0]).norm() + (c[1] - c[0]).norm() + (c[2] - c[1]).norm());
     }
-    limit_widths();
+    limit_widths(arrays);
   }
 
   double depth(int i, double v) const { return spans[i].z0 + (spans[i].z1 - spans[i].z0) * v; }
@@ -174,11 +189,14 @@ struct Extruder {
     return std::min(h, style.max_width_px);
   }
 
-  void limit_widths() {
+  void limit_widths(ExtruderArrays& arrays) {
     const int n = int(spans.size()) * kWidthSamples + 1;
-    std::vector<Vector2d> b(n), normal(n), centre(n);
-    std::vector<char> has_centre(n, 0);
-    std::vector<double> arc(n, 0), free(n);
+    std::vector<Vector2d>&b = arrays.b, &normal = arrays.normal, &centre = arrays.centre;
+    std::vector<char>& has_centre = arrays.has_centre;
+    std::vector<double>&arc = arrays.arc, &free = arrays.free;
+    b.resize(n), normal.resize(n), centre.resize(n), free.resize(n);
+    has_centre.assign(n, 0);
+    arc.assign(n, 0);
     for (int g = 0; g < n; ++g) {
       const int i = std::min(g / kWidthSamples, int(spans.size()) - 1);
       const double v = double(g - i * kWidthSamples) / kWidthSamples;
@@ -204,8 +222,10 @@ struct Extruder {
     // 60 degrees in all lie within 30 degrees of a middle one, so the stretch is at least
     // cos 30 > 1 / 1.2 of its arc length long from end to end: it holds no fold.
     const int blocks = (n + kWidthSamples - 1) / kWidthSamples;
-    std::vector<double> radius(n, INFINITY);
-    std::vector<Eigen::AlignedBox2d> box(blocks);
+    std::vector<double>& radius = arrays.radius;
+    std::vector<Eigen::AlignedBox2d>& box = arrays.box;
+    radius.assign(n, INFINITY);
+    box.assign(blocks, Eigen::AlignedBox2d());
     double extent = arc[n - 1];
     for (int g = 0; g < n; ++g) {
       const int k = g / kWidthSamples;
@@ -221,7 +241,8 @@ struct Extruder {
     // directions a chord c <= 1 apart differ by 2 asin(c / 2) <= (pi / 3) c; above, count a half
     // turn. A segment of length zero keeps the direction before it.
     constexpr double kStraight = M_PI / 3;
-    std::vector<double> turning(n, 0);
+    std::vector<double>& turning = arrays.turning;
+    turning.assign(n, 0);
     Vector2d heading(0, 0);
     for (int k = 0; k + 1 < n; ++k) {
       const double length = arc[k + 1] - arc[k];
@@ -238,7 +259,8 @@ struct Extruder {
     }
     // The centres that can lower some width: a radius below (2 + 1 / clamp) free widths.
     const double free_max = *std::max_element(free.begin(), free.end());
-    std::vector<int> tight;
+    std::vector<int>& tight = arrays.tight;
+    tight.clear();
     for (int j = 0; j < n; ++j)
       if (has_centre[j] &&
           !(style.curvature_clamp * (radius[j] - 2 * free_max - slack) >= free_max))
@@ -247,106 +269,127 @@ struct Extruder {
     // Per g, the segments from g on (before g) within kStraight of turning end at ahead (behind).
     int ahead = 0, behind = 0;
 
-    width.assign(n, {0, 0});
+    // The scans read plain arrays and keep the widths in two locals: with the table's vectors
+    // and the style behind references, each store to a width made the compiler load them again.
+    const double clamp = style.curvature_clamp;
+    const Vector2d *b_at = b.data(), *normal_at = normal.data(), *centre_at = centre.data();
+    const double *arc_at = arc.data(), *free_at = free.data(), *radius_at = radius.data();
+    const double* turning_at = turning.data();
+    const int* tight_at = tight.data();
+    const int tight_count = int(tight.size());
+    width.resize(n);
     for (int g = 0; g < n; ++g) {
-      std::array<double, 2> h = {free[g], free[g]};
-      auto widest = [&] { return std::max(h[0], h[1]); };
-      auto lower = [&](int side, double cap) {
-        if (cap < h[side]) h[side] = cap;
+      double left = free_at[g], right = free_at[g];
+      const Vector2d bg = b_at[g], ng = normal_at[g];
+      const double ag = arc_at[g], fg = free_at[g];
+      auto lower = [&](bool on_left, double cap) {  // on_left: towards +N
+        if (on_left) {
+          if (cap < left) left = cap;
+        } else if (cap < right) {
+          right = cap;
+        }
       };
       // Centres of curvature on each side, within twice the free width along the curve: only
       // the tight ones can lower a width. A centre of radius R at arc distance a lies at least
       // R - a away.
-      while (next_tight < int(tight.size()) && tight[next_tight] <= g) ++next_tight;
+      while (next_tight < tight_count && tight_at[next_tight] <= g) ++next_tight;
       for (int dir : {-1, +1}) {
-        for (int t = dir < 0 ? next_tight - 1 : next_tight; t >= 0 && t < int(tight.size());
-             t += dir) {
-          const int j = tight[t];
-          if (!(std::abs(arc[j] - arc[g]) <= 2 * free[g])) break;
-          if (style.curvature_clamp * (radius[j] - std::abs(arc[j] - arc[g]) - slack) >= widest())
+        for (int t = dir < 0 ? next_tight - 1 : next_tight; t >= 0 && t < tight_count; t += dir) {
+          const int j = tight_at[t];
+          if (!(std::abs(arc_at[j] - ag) <= 2 * fg)) break;
+          if (clamp * (radius_at[j] - std::abs(arc_at[j] - ag) - slack) >= std::max(left, right))
             continue;
-          const Vector2d to = centre[j] - b[g];
-          lower(to.dot(normal[g]) > 0 ? 0 : 1, style.curvature_clamp * to.norm());  // left: +N
+          const Vector2d to = centre_at[j] - bg;
+          lower(to.dot(ng) > 0, clamp * to.norm());
         }
       }
       // Folds: where the curve bends back (a sharp V, the next arch of a coil), a point of it
       // ahead of this side (within 60 degrees of the normal) that is much nearer in space than
       // along the curve; each of the two passes may take half the gap.
-      for (ahead = std::max(ahead, g); ahead < n - 1 && turning[ahead] <= turning[g] + kStraight;)
+      for (ahead = std::max(ahead, g);
+           ahead < n - 1 && turning_at[ahead] <= turning_at[g] + kStraight;)
         ++ahead;
-      while (g > 0 && behind < g - 1 && turning[behind] < turning[g - 1] - kStraight) ++behind;
+      while (g > 0 && behind < g - 1 && turning_at[behind] < turning_at[g - 1] - kStraight)
+        ++behind;
       for (int dir : {-1, +1}) {
         // The first sample past the straight stretch from g.
         const int straight_end = dir > 0 ? (ahead < n - 1 ? ahead + 1 : n)
                                  : g > 0 ? behind - 1
                                          : -1;
         int block = -1;
-        for (int j = g + dir; j >= 0 && j < n && std::abs(arc[j] - arc[g]) <= 8 * free[g];
-             j += dir) {
-          if ((j - straight_end) * dir < 0 && std::abs(arc[j] - arc[g]) > slack) {
+        for (int j = g + dir; j >= 0 && j < n && std::abs(arc_at[j] - ag) <= 8 * fg; j += dir) {
+          if ((j - straight_end) * dir < 0 && std::abs(arc_at[j] - ag) > slack) {
             j = straight_end - dir;
             continue;
           }
           if (const int k = j / kWidthSamples; k != block) {
             block = k;
             // Half the gap to any sample of the block cannot lower either side.
-            const double far = widest() * (2 / style.curvature_clamp) + slack;
-            if (box[k].squaredExteriorDistance(b[g]) >= far * far) {
+            const double far = std::max(left, right) * (2 / clamp) + slack;
+            if (box[k].squaredExteriorDistance(bg) >= far * far) {
               j = past_block(k, dir);
               continue;
             }
           }
-          const Vector2d to = b[j] - b[g];
-          const double gap = to.norm(), along = to.dot(normal[g]);
-          if (std::abs(arc[j] - arc[g]) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
-          lower(along > 0 ? 0 : 1, 0.5 * style.curvature_clamp * gap);
+          const Vector2d to = b_at[j] - bg;
+          const double gap = to.norm(), along = to.dot(ng);
+          if (std::abs(arc_at[j] - ag) < 1.2 * gap || std::abs(along) < 0.5 * gap) continue;
+          lower(along > 0, 0.5 * clamp * gap);
         }
       }
-      for (double& x : h) x = x < 1e-9 ? 0.0 : x;
-      width[g] = h;
+      width[g] = {left < 1e-9 ? 0.0 : left, right < 1e-9 ? 0.0 : right};
     }
   }
 
-  // Half-width of side 0 (left) or 1 (right): monotone cubic (Fritsch-Carlson) interpolation of
+  // Half-widths of the left and the right side: monotone cubic (Fritsch-Carlson) interpolation of
   // the table, C1 so the Hermite outline fits need few pieces, and never above its neighbours.
-  double half_width(int i, double v, int side) const {
+  std::array<double, 2> half_widths(int i, double v) const {
     const double x = std::clamp(v, 0.0, 1.0) * kWidthSamples;
     const int j = std::min(int(x), kWidthSamples - 1);
     const double f = x - j;
     const int g = i * kWidthSamples + j, n = int(width.size());
-    auto w = [&](int k) { return width[std::clamp(k, 0, n - 1)][side]; };
-    auto slope = [&](int k) {
-      const double a = w(k) - w(k - 1), b = w(k + 1) - w(k);
-      return a * b <= 0 ? 0.0 : 2 * a * b / (a + b);  // harmonic mean, zero at extrema
-    };
-    const double y0 = w(g), y1 = w(g + 1), m0 = slope(g), m1 = slope(g + 1);
     const double f2 = f * f, f3 = f2 * f;
-    return std::max(0.0, (2 * f3 - 3 * f2 + 1) * y0 + (f3 - 2 * f2 + f) * m0 +
-                             (-2 * f3 + 3 * f2) * y1 + (f3 - f2) * m1);
+    std::array<double, 2> out;
+    for (int side = 0; side < 2; ++side) {
+      auto w = [&](int k) { return width[std::clamp(k, 0, n - 1)][side]; };
+      auto slope = [&](int k) {
+        const double a = w(k) - w(k - 1), b = w(k + 1) - w(k);
+        return a * b <= 0 ? 0.0 : 2 * a * b / (a + b);  // harmonic mean, zero at extrema
+      };
+      const double y0 = w(g), y1 = w(g + 1), m0 = slope(g), m1 = slope(g + 1);
+      out[side] = std::max(0.0, (2 * f3 - 3 * f2 + 1) * y0 + (f3 - 2 * f2 + f) * m0 +
+                                    (-2 * f3 + 3 * f2) * y1 + (f3 - f2) * m1);
+    }
+    return out;
   }
 
   // The left (+N d_left) and the right (-N d_right) offset at v, which share B(v) and N(v).
   std::array<Vector2d, 2> offsets(int i, double v) const {
     const Vector2d c = eval(spans[i].b, v), n = left_normal(i, v);
-    return {c + half_width(i, v, 0) * n, c + -half_width(i, v, 1) * n};
+    const std::array<double, 2> h = half_widths(i, v);
+    return {c + h[0] * n, c + -h[1] * n};
   }
 
-  // dp/dv by finite differences that stay inside the span (the spline is only G1 across spans).
-  std::array<Vector2d, 2> offset_derivatives(int i, double v) const {
+  // Both offsets at v and dp/dv there, by finite differences that stay inside the span (the
+  // spline is only G1 across spans); `p` is offsets(i, v), shared with the side of the
+  // difference that does not move (at a span's ends).
+  struct End {
+    std::array<Vector2d, 2> p, d;
+  };
+  End end(int i, double v, const std::array<Vector2d, 2>& p) const {
     const double h = 1e-6;
     const double a = std::max(0.0, v - h), b = std::min(1.0, v + h);
-    const std::array<Vector2d, 2> pa = offsets(i, a), pb = offsets(i, b);
-    return {(pb[0] - pa[0]) / (b - a), (pb[1] - pa[1]) / (b - a)};
+    const std::array<Vector2d, 2> pa = a == v ? p : offsets(i, a), pb = b == v ? p : offsets(i, b);
+    return {p, {(pb[0] - pa[0]) / (b - a), (pb[1] - pa[1]) / (b - a)}};
   }
+  End end(int i, double v) const { return end(i, v, offsets(i, v)); }
 
   // Hermite cubics matching the offsets' ends and end derivatives on [v0, v1]: left, right.
-  std::array<Cubic, 2> hermites(int i, double v0, double v1) const {
-    const std::array<Vector2d, 2> p0 = offsets(i, v0), p3 = offsets(i, v1);
-    const std::array<Vector2d, 2> d0 = offset_derivatives(i, v0), d3 = offset_derivatives(i, v1);
+  static std::array<Cubic, 2> hermites(double v0, double v1, const End& e0, const End& e1) {
     const double third = (v1 - v0) / 3;
     std::array<Cubic, 2> out;
     for (int s = 0; s < 2; ++s)
-      out[s] = {p0[s], p0[s] + d0[s] * third, p3[s] - d3[s] * third, p3[s]};
+      out[s] = {e0.p[s], e0.p[s] + e0.d[s] * third, e1.p[s] - e1.d[s] * third, e1.p[s]};
     return out;
   }
 };
@@ -359,25 +402,29 @@ struct Piece {
   Cubic left, right;
 };
 
-void fit_pieces(const Extruder& ex, int span, double v0, double v1, int level,
-                std::vector<Piece>& out) {
-  const std::array<Cubic, 2> sides = ex.hermites(span, v0, v1);
-  Piece piece{span, v0, v1, sides[0], sides[1]};
+// Fits [v0, v1] of a span, whose ends' offsets and derivatives are e0 and e1, splitting it in
+// halves until five check points are within the tolerance; a split's middle is the check point
+// at 1/2 (both are exact: the v's are dyadic), so each end is evaluated once.
+void fit_pieces(const Extruder& ex, int span, double v0, double v1, const Extruder::End& e0,
+                const Extruder::End& e1, int level, std::vector<Piece>& out) {
+  const std::array<Cubic, 2> sides = Extruder::hermites(v0, v1, e0, e1);
   if (level < 12) {
-    double error = 0;
+    std::array<Vector2d, 2> middle;
+    bool have_middle = false;
     for (double q : {0.1, 0.3, 0.5, 0.7, 0.9}) {
       const std::array<Vector2d, 2> exact = ex.offsets(span, v0 + (v1 - v0) * q);
-      error = std::max(error, (eval(piece.left, q) - exact[0]).norm());
-      error = std::max(error, (eval(piece.right, q) - exact[1]).norm());
-    }
-    if (error > ex.style.fit_tolerance_px) {
-      const double mid = 0.5 * (v0 + v1);
-      fit_pieces(ex, span, v0, mid, level + 1, out);
-      fit_pieces(ex, span, mid, v1, level + 1, out);
-      return;
+      if (q == 0.5) middle = exact, have_middle = true;
+      if ((eval(sides[0], q) - exact[0]).norm() > ex.style.fit_tolerance_px ||
+          (eval(sides[1], q) - exact[1]).norm() > ex.style.fit_tolerance_px) {
+        const double mid = 0.5 * (v0 + v1);
+        const Extruder::End em = have_middle ? ex.end(span, mid, middle) : ex.end(span, mid);
+        fit_pieces(ex, span, v0, mid, e0, em, level + 1, out);
+        fit_pieces(ex, span, mid, v1, em, e1, level + 1, out);
+        return;
+      }
     }
   }
-  out.push_back(piece);
+  out.push_back({span, v0, v1, sides[0], sides[1]});
 }
 
 double squared_distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
@@ -391,16 +438,18 @@ double squared_distance_to_segment(const Vector2d& p, const Vector2d& a, const V
 // left, right or centre polyline by more than `tolerance`. The ends always stay. A section's
 // distance, the largest of its three, is the root of the largest square; the root is taken only
 // where the square passes the worst one so far (roots are monotone: the same sections win).
-std::vector<Section> simplify(const std::vector<Section>& dense, double tolerance) {
+void simplify(const std::vector<Section>& dense, double tolerance, std::vector<char>& keep,
+              std::vector<std::pair<int, int>>& stack, std::vector<Section>& out) {
   // The largest square whose root is within the tolerance.
   double within = tolerance * tolerance;
   while (within > 0 && std::sqrt(within) > tolerance) within = std::nextafter(within, 0.0);
   while (within < INFINITY && std::sqrt(std::nextafter(within, INFINITY)) <= tolerance)
     within = std::nextafter(within, INFINITY);
   const int n = int(dense.size());
-  std::vector<char> keep(n, 0);
+  keep.assign(n, 0);
   keep[0] = keep[n - 1] = 1;
-  std::vector<std::pair<int, int>> stack = {{0, n - 1}};
+  int kept = 2;
+  stack.assign(1, {0, n - 1});
   while (!stack.empty()) {
     const auto [a, b] = stack.back();
     stack.pop_back();
@@ -419,14 +468,31 @@ std::vector<Section> simplify(const std::vector<Section>& dense, double toleranc
     }
     if (split < 0) continue;
     keep[split] = 1;
+    ++kept;
     stack.push_back({a, split});
     stack.push_back({split, b});
   }
-  std::vector<Section> out;
+  out.reserve(kept);
   for (int j = 0; j < n; ++j)
     if (keep[j]) out.push_back(dense[j]);
-  return out;
 }
+
+// The scratch arrays of one wisp's construction, shared by the wisps of a frame so that a wisp
+// allocates only what it returns.
+struct Workspace {
+  std::vector<int> kept;
+  std::vector<CentrePoint> points;
+  std::vector<Vector2d> pixels;
+  std::vector<Span> spans;
+  ExtruderArrays extruder;
+  std::vector<Piece> pieces;
+  std::vector<Section> dense;
+  std::vector<char> keep;
+  std::vector<std::pair<int, int>> stack;
+};
+
+std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_px,
+                               const WispStyle& style, Workspace& ws);
 
 }  // namespace
 
@@ -466,8 +532,10 @@ void validate(const WispStyle& style) {
   validate(style.profile);
 }
 
+namespace {
+
 std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_px,
-                               const WispStyle& style) {
+                               const WispStyle& style, Workspace& ws) {
   check_strand(strand);
   const int samples = int(strand.pixel.size());
   if (samples < 2) return std::nullopt;
@@ -475,7 +543,8 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   if (last <= first) return std::nullopt;
 
   // Keep samples at least merge_distance apart; the tip sample always survives.
-  std::vector<int> kept = {first};
+  std::vector<int>& kept = ws.kept;
+  kept.assign(1, first);
   for (int i = first + 1; i <= last; ++i) {
     if ((strand.pixel[i] - strand.pixel[kept.back()]).norm() > style.merge_distance_px)
       kept.push_back(i);
@@ -488,19 +557,25 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   w.strand = strand.id;
   w.first_sample = first;
   w.last_sample = last;
-  std::vector<CentrePoint> points;
+  std::vector<CentrePoint>& points = ws.points;
+  points.clear();
   for (int i : kept)
     points.push_back({strand.pixel[i], strand.depth[i], double(i) / (samples - 1),
                       strand.tangent.empty() ? Vector3d::Zero() : strand.tangent[i],
                       strand.width.empty() ? -1.0 : strand.width[i]});
   if (!strand.width.empty()) square_caps(points, focal_px, style);
-  std::vector<Vector2d> pixels;
+  std::vector<Vector2d>& pixels = ws.pixels;
+  pixels.clear();
   for (const CentrePoint& p : points) pixels.push_back(p.pixel);
   CentreSpline& c = w.centre;
   c.points = catmull_rom_path(pixels).points;
   const int k = c.piece_count();
 
-  std::vector<Span> spans;
+  std::vector<Span>& spans = ws.spans;
+  spans.clear();
+  c.depth.reserve(3 * k + 1);
+  c.tangent.reserve(3 * k + 1);
+  c.strand_u.reserve(3 * k + 1);
   for (int s = 0; s < k; ++s) {
     const CentrePoint &a = points[s], &b = points[s + 1];
     spans.push_back({c.piece(s), a.depth, b.depth, a.u, b.u, a.width, b.width});
@@ -516,16 +591,20 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   c.tangent.push_back(points.back().tangent);
   c.strand_u.push_back(points.back().u);
 
-  const Extruder ex(spans, style, focal_px);
+  const Extruder ex(spans, style, focal_px, ws.extruder);
+  w.half_width_left.reserve(k + 1);
+  w.half_width_right.reserve(k + 1);
   for (int s = 0; s <= k; ++s) {
     const int span = std::min(s, k - 1);
     const double v = s < k ? 0.0 : 1.0;
-    w.half_width_left.push_back(ex.half_width(span, v, 0));
-    w.half_width_right.push_back(ex.half_width(span, v, 1));
+    const std::array<double, 2> h = ex.half_widths(span, v);
+    w.half_width_left.push_back(h[0]);
+    w.half_width_right.push_back(h[1]);
   }
 
-  std::vector<Piece> pieces;
-  for (int s = 0; s < k; ++s) fit_pieces(ex, s, 0, 1, 0, pieces);
+  std::vector<Piece>& pieces = ws.pieces;
+  pieces.clear();
+  for (int s = 0; s < k; ++s) fit_pieces(ex, s, 0, 1, ex.end(s, 0), ex.end(s, 1), 0, pieces);
   const int m = int(pieces.size());
   const bool tip_cap = pieces.back().left[3] != pieces.back().right[3];
   const bool root_cap = pieces.front().left[0] != pieces.front().right[0];
@@ -533,6 +612,10 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
 
   // The outline path: left pieces, tip cap, right pieces reversed, root cap.
   Outline& o = w.outline;
+  o.points.reserve(3 * cubic_count + 1);
+  o.t.reserve(3 * cubic_count + 1);
+  o.depth.reserve(3 * cubic_count + 1);
+  o.side.reserve(cubic_count);
   auto t_of = [&](const Piece& p, double q) { return (p.span + p.v0 + (p.v1 - p.v0) * q) / k; };
   auto z_of = [&](const Piece& p, double q) { return ex.depth(p.span, p.v0 + (p.v1 - p.v0) * q); };
   auto add_cubic = [&](const Cubic& cubic, Side side, double t0, double t1, double z0, double z1) {
@@ -564,7 +647,8 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   // The band sections: dense uniform steps per piece within a quarter of the tolerance, then
   // thinned by Douglas-Peucker on the left, right and centre polylines together (the remaining
   // three quarters), so straight stretches cost few segments and tight curls many.
-  std::vector<Section> dense;
+  std::vector<Section>& dense = ws.dense;
+  dense.clear();
   const double dense_tolerance = 0.25 * style.flatten_tolerance_px;
   for (int j = 0; j < m; ++j) {
     const Piece& p = pieces[j];
@@ -585,7 +669,7 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
       dense.push_back(sec);
     }
   }
-  w.sections = simplify(dense, 0.75 * style.flatten_tolerance_px);
+  simplify(dense, 0.75 * style.flatten_tolerance_px, ws.keep, ws.stack, w.sections);
   w.bounds.setEmpty();
   for (const Section& s : w.sections) {
     w.bounds.extend(s.left);
@@ -594,6 +678,8 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
   return w;
 }
 
+}  // namespace
+
 std::vector<Wisp> build_wisps(const sim::ProjectedFrame& frame, const WispStyle& style) {
   validate(style);
   if (!std::isfinite(frame.focal_px) || frame.focal_px <= 0)
@@ -601,9 +687,16 @@ std::vector<Wisp> build_wisps(const sim::ProjectedFrame& frame, const WispStyle&
                                 ": focal_px must be finite and > 0");
   std::vector<Wisp> wisps;
   wisps.reserve(frame.strands.size());
+  Workspace ws;
   for (const sim::ProjectedStrand& strand : frame.strands)
-    if (auto w = build_wisp(strand, frame.focal_px, style)) wisps.push_back(std::move(*w));
+    if (auto w = build_wisp(strand, frame.focal_px, style, ws)) wisps.push_back(std::move(*w));
   return wisps;
+}
+
+std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_px,
+                               const WispStyle& style) {
+  Workspace ws;
+  return build_wisp(strand, focal_px, style, ws);
 }
 
 std::vector<OutlineVertex> outline_polygon(const Wisp& w) {

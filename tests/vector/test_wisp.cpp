@@ -325,3 +325,35 @@ TEST_CASE("wisp construction is deterministic", "[vector][wisp]") {
       CHECK(a[i].sections[k].left == b[i].sections[k].left);
   }
 }
+
+TEST_CASE("a frame's wisps are those built one at a time", "[vector][wisp]") {
+  // build_wisps shares its scratch arrays between the wisps of a frame: a wisp must not see
+  // anything of the one before, long or short, curly or straight, with or without clump widths.
+  auto frame = test::random_frame(30, 23);
+  frame.strands[4].width.assign(frame.strands[4].pixel.size(), 0.03);
+  frame.strands[9].visible.assign(frame.strands[9].pixel.size(), 1);
+  frame.strands[9].visible[frame.strands[9].visible.size() / 2] = 0;
+  std::swap(frame.strands[2], frame.strands[20]);
+  const auto style = wide();
+  const auto all = vector::build_wisps(frame, style);
+  size_t i = 0;
+  for (const sim::ProjectedStrand& s : frame.strands) {
+    const auto one = vector::build_wisp(s, frame.focal_px, style);
+    if (!one) continue;
+    REQUIRE(i < all.size());
+    const vector::Wisp& w = all[i++];
+    CHECK(w.strand == one->strand);
+    CHECK(w.centre.points == one->centre.points);
+    CHECK(w.half_width_left == one->half_width_left);
+    CHECK(w.half_width_right == one->half_width_right);
+    CHECK(w.outline.points == one->outline.points);
+    CHECK(w.outline.depth == one->outline.depth);
+    REQUIRE(w.sections.size() == one->sections.size());
+    for (size_t k = 0; k < w.sections.size(); ++k) {
+      CHECK(w.sections[k].left == one->sections[k].left);
+      CHECK(w.sections[k].right == one->sections[k].right);
+      CHECK(w.sections[k].s_left == one->sections[k].s_left);
+    }
+  }
+  CHECK(i == all.size());
+}
