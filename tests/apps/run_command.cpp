@@ -1,8 +1,7 @@
-// run_command / fresh_folder: see run_command.hpp.
+// run_command and simulated: see run_command.hpp.
 #include "run_command.hpp"
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <map>
@@ -23,15 +22,6 @@ CommandResult run_command(const std::string& command) {
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
-}
-
-std::string fresh_folder(const std::string& name) {
-  // The process id keeps concurrent runs (two build trees, parallel ctest) apart.
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("wisp_test_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
 }
 
 const std::string& simulated(const std::string& scene) {

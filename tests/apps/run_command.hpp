@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "tests/test_folder.hpp"  // fresh_folder, for the tests that run commands
+
 namespace wisp::test {
 
 struct CommandResult {
@@ -11,9 +13,6 @@ struct CommandResult {
 };
 
 CommandResult run_command(const std::string& command);
-
-// A fresh empty folder under the system's temporary folder, named after the test and process.
-std::string fresh_folder(const std::string& name);
 
 // `wisp simulate scene -o <file>`, run once per test process and scene (ctest runs test cases
 // in parallel processes, so each has its own copy); returns the saved animation's path.

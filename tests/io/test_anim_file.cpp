@@ -1,6 +1,5 @@
 // The saved animation (.wsim): bit-exact round trip, determinism of `simulate` + write, and
 // rejection of truncated, corrupt and foreign files.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -10,6 +9,7 @@
 
 #include "io/anim_file.hpp"
 #include "sim/simulate.hpp"
+#include "tests/test_folder.hpp"
 
 using namespace wisp;
 using Eigen::Vector3d;
@@ -17,10 +17,7 @@ using Eigen::Vector3d;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("wisp_test_anim_file_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return wisp::test::test_folder("anim_file");
 }
 
 std::string bytes_of(const std::filesystem::path& p) {

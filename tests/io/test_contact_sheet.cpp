@@ -1,5 +1,4 @@
 // The contact sheet: its size, each tile's content and label, errors.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -7,16 +6,14 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/contact_sheet.hpp"
+#include "tests/test_folder.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path temp_dir() {
-  const auto dir =
-      fs::temp_directory_path() / ("wisp_test_contact_sheet_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
+  return wisp::test::test_folder("contact_sheet");
 }
 
 // A flat colour per frame: frame i is (40 + 20 i, 200 - 15 i, 30 + 7 i) in BGR.

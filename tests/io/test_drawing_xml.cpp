@@ -1,11 +1,11 @@
 // Diffusion-curve XML: both dialects, their swaps, round trips, and clear errors.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <map>
 
 #include "io/drawing_xml.hpp"
+#include "tests/test_folder.hpp"
 
 using namespace wisp;
 using diffusion::Boundary;
@@ -142,9 +142,7 @@ TEST_CASE("writing then reading gives identical curves", "[xml]") {
 }
 
 TEST_CASE("files are written whole through a temporary name", "[xml]") {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("wisp_xml_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const auto dir = wisp::test::test_folder("drawing_xml");
   const io::DrawingFile a = io::read_drawing_xml(kData + "bubble.xml");
   io::write_drawing_xml(a.drawing, dir / "out.xml");
   CHECK(same_curves(io::read_drawing_xml(dir / "out.xml").drawing, a.drawing));

@@ -1,5 +1,4 @@
 // Cem Yuksel's .hair format, our JSON strands, and hair files as scene guides.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -13,6 +12,7 @@
 #include "io/hair_json.hpp"
 #include "io/scene.hpp"
 #include "sim/clumps.hpp"
+#include "tests/test_folder.hpp"
 
 using namespace wisp::io;
 using Eigen::Vector3d;
@@ -20,10 +20,7 @@ using Eigen::Vector3d;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("wisp_test_hair_file_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return wisp::test::test_folder("hair_file");
 }
 
 // A fixture of `n` strands with varying point counts, coordinates exact in float.

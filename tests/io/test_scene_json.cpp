@@ -1,5 +1,4 @@
 // Scene JSON: defaults, every part parsed, unknown fields with suggestions, bad values named.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -10,6 +9,7 @@
 
 #include "apps/render/scene_setup.hpp"
 #include "io/scene.hpp"
+#include "tests/test_folder.hpp"
 
 using nlohmann::json;
 using wisp::io::parse_scene;
@@ -207,9 +207,7 @@ TEST_CASE("bad values are errors naming the field", "[io][scene]") {
 }
 
 TEST_CASE("NaN in keyframes and malformed JSON are clear errors", "[io][scene]") {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("wisp_test_scene_json_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const auto dir = wisp::test::test_folder("scene_json");
   const auto write = [&](const char* name, const char* text) {
     std::ofstream(dir / name) << text;
     return dir / name;

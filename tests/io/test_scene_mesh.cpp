@@ -1,5 +1,4 @@
 // The OBJ reader for head meshes, and a mesh head used by the simulation.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -10,14 +9,12 @@
 #include "io/scene.hpp"
 #include "io/scene_mesh.hpp"
 #include "sim/head.hpp"
+#include "tests/test_folder.hpp"
 
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("wisp_test_scene_mesh_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return wisp::test::test_folder("scene_mesh");
 }
 
 // A closed cube of side 0.2 centred on the origin: quads, v/vt/vn face items, a negative index.

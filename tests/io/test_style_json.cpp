@@ -7,6 +7,7 @@
 #include "apps/render/picture.hpp"
 #include "io/ramp_file.hpp"
 #include "io/scene.hpp"
+#include "tests/test_folder.hpp"
 #include "vector/toon_ramp.hpp"
 
 using nlohmann::json;
@@ -25,10 +26,7 @@ std::string error_of(const json& doc, const fs::path& path = "scene.json") {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("wisp_style_json_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return wisp::test::fresh_folder("style_json_" + name);
 }
 
 }  // namespace

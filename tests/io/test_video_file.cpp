@@ -1,5 +1,4 @@
 // The MP4 preview: frame count after decoding, determinism, atomic writing, errors.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -11,15 +10,14 @@
 #include <opencv2/videoio.hpp>
 
 #include "io/video_file.hpp"
+#include "tests/test_folder.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path temp_dir() {
-  const auto dir = fs::temp_directory_path() / ("wisp_test_video_file_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
+  return wisp::test::test_folder("video_file");
 }
 
 // `count` frames of a disc moving across a gradient, as PNG files.
