@@ -3,7 +3,8 @@
 // Storage: every level keeps its arrays on a grid padded by one ghost point on each side, so
 // stencils never branch at the border: ghost values and couplings to ghosts are zero.
 // Operator at point p:  (A e)_p = diag_p e_p - sum_q a_pq e_q  over the 8 neighbours, with the
-// couplings stored once per pair: east, south, south-east and south-west of p.
+// couplings stored once per pair: east, south, south-east and south-west of p. The finest level
+// stores its 0/1 couplings and its link counts as a byte per point (Level::code).
 #include "diffusion/multigrid.hpp"
 
 #include <tbb/blocked_range.h>
@@ -57,12 +58,23 @@ double error_estimate(double delta, double rho) {
   return kErrorSafety * delta * rho / (1 - rho);
 }
 
+// Bits of Level::code.
+constexpr std::uint8_t kCodeEast = 1;      // coupled to the east neighbour: ae = 1
+constexpr std::uint8_t kCodeSouth = 2;     // coupled to the south neighbour: as = 1
+constexpr std::uint8_t kCodeAnchored = 4;  // diag and inv_diag are not the link count's
+constexpr int kCodeLinksShift = 4;         // open links (0 on fixed points): diag, if not anchored
+
 struct Level {
   int w = 0, h = 0;  // interior size
   int stride = 0;    // w + 2
   bool nine_point = false;
-  std::vector<float> diag, inv_diag;  // inv_diag is 0 on fixed points: the smoother keeps e = 0
-  std::vector<float> ae, as, ase, asw;
+  std::vector<float> diag, inv_diag;    // inv_diag is 0 on fixed points: the smoother keeps e = 0
+  std::vector<float> ae, as, ase, asw;  // empty on the finest level (see code)
+  // The finest level's couplings are 0 or 1 (a link open between two free points, or not) and
+  // its diagonal the count of open links, plus the anchor weight where there is one: `code` holds
+  // them in a byte a point, which the cycles read instead of 16 bytes of floats (they are bound by
+  // memory). diag and inv_diag are kept, and read in the cycles only where a point is anchored.
+  std::vector<std::uint8_t> code;
   std::vector<std::uint8_t> alive;  // 1 on free points
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
@@ -243,7 +255,8 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   const size_t n = L.padded();
   std::vector<std::uint8_t> changed;
   if (full) {
-    for (auto* v : {&L.diag, &L.inv_diag, &L.ae, &L.as}) v->assign(n, 0.0f);
+    for (auto* v : {&L.diag, &L.inv_diag}) v->assign(n, 0.0f);
+    L.code.assign(n, 0);
     L.alive.assign(n, 0);
   } else {
     changed.assign(n, 0);
@@ -255,28 +268,30 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
         const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
         const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
         const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
-        float diag = 0, inv_diag = 0, ae = 0, as = 0;
+        float diag = 0, inv_diag = 0;
+        std::uint8_t code = 0;
         if (!fixed[i]) {
-          diag = float(open_e + open_s + open_w + open_n) + p.anchor_weight[i];
+          const int links = open_e + open_s + open_w + open_n;
+          diag = float(links) + p.anchor_weight[i];
           inv_diag = 1.0f / diag;  // > 0: a free reached pixel is anchored or linked
-          if (open_e && !fixed[i + 1]) ae = 1.0f;
-          if (open_s && !fixed[i + p.width]) as = 1.0f;
+          code = std::uint8_t(links << kCodeLinksShift);
+          if (p.anchor_weight[i] > 0) code |= kCodeAnchored;
+          if (open_e && !fixed[i + 1]) code |= kCodeEast;
+          if (open_s && !fixed[i + p.width]) code |= kCodeSouth;
         }
         const std::uint8_t alive = !fixed[i];
         if (full) {
           L.alive[k] = alive;
           L.diag[k] = diag;
           L.inv_diag[k] = inv_diag;
-          L.ae[k] = ae;
-          L.as[k] = as;
+          L.code[k] = code;
           continue;
         }
-        bool c = L.alive[k] != alive;
+        bool c = L.alive[k] != alive || L.code[k] != code;
         L.alive[k] = alive;
+        L.code[k] = code;
         c |= update(L.diag[k], diag);
         c |= update(L.inv_diag[k], inv_diag);
-        c |= update(L.ae[k], ae);
-        c |= update(L.as[k], as);
         changed[k] = c;
       }
   });
@@ -293,13 +308,21 @@ float coupling(const std::vector<float>& v, size_t k) {
   return v.empty() ? 0.0f : v[k];
 }
 
+// The couplings of point k to its east and south neighbours (on the finest level, from its code).
+float east_of(const Level& L, size_t k) {
+  return L.code.empty() ? L.ae[k] : (L.code[k] & kCodeEast ? 1.0f : 0.0f);
+}
+float south_of(const Level& L, size_t k) {
+  return L.code.empty() ? L.as[k] : (L.code[k] & kCodeSouth ? 1.0f : 0.0f);
+}
+
 Stencil stencil_at(const Level& F, size_t k) {
   const int fs = F.stride;
   return Stencil{F.diag[k],
-                 F.ae[k],
-                 F.ae[k - 1],
-                 F.as[k - fs],
-                 F.as[k],
+                 east_of(F, k),
+                 east_of(F, k - 1),
+                 south_of(F, k - fs),
+                 south_of(F, k),
                  coupling(F.asw, k - fs + 1),
                  coupling(F.ase, k - fs - 1),
                  coupling(F.ase, k),
@@ -445,8 +468,9 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
   for (int y = 0; y < F.h; ++y)
     for (int x = 0; x < F.w; ++x) {
       const size_t k = F.at(x, y);
-      const bool plain = F.alive[k] && F.diag[k] == 4.0f && F.ae[k] == 1.0f && F.as[k] == 1.0f &&
-                         F.ae[k - 1] == 1.0f && F.as[k - fs] == 1.0f;
+      const bool plain = F.alive[k] && F.diag[k] == 4.0f && east_of(F, k) == 1.0f &&
+                         south_of(F, k) == 1.0f && east_of(F, k - 1) == 1.0f &&
+                         south_of(F, k - fs) == 1.0f;
       S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
     }
   std::vector<std::uint8_t> out(C.padded(), 0);
@@ -649,8 +673,8 @@ void Multigrid<NC>::build_coarsest() {
         M(index[k2], r) -= a;
       }
     };
-    couple(k + 1, L.ae[k]);
-    couple(k + s, L.as[k]);
+    couple(k + 1, east_of(L, k));
+    couple(k + s, south_of(L, k));
     if (L.nine_point) {
       couple(k + s + 1, L.ase[k]);
       couple(k + s - 1, L.asw[k]);
@@ -680,6 +704,18 @@ struct RowCouplings {
   int stride;
   bool nine_point;
 
+  RowCouplings(const float* east, const float* west, const float* south, const float* north,
+               int row_stride)
+      : ae(east),
+        aw(west),
+        as(south),
+        an(north),
+        ase(nullptr),
+        anw(nullptr),
+        asw(nullptr),
+        ane(nullptr),
+        stride(row_stride),
+        nine_point(false) {}
   RowCouplings(const Level& L, size_t row)
       : ae(&L.ae[row]),
         aw(&L.ae[row - 1]),
@@ -705,50 +741,131 @@ struct RowCouplings {
   }
 };
 
+// The finest level's diagonal (and its inverse) at a point that is not anchored, by its count of
+// open links (Level::code): the same floats as float(links) + 0 and 1.0f / that.
+constexpr float kLinksDiag[16] = {0, 1, 2, 3, 4};
+constexpr float kLinksInverse[16] = {0, 1.0f / 1, 1.0f / 2, 1.0f / 3, 1.0f / 4};
+
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+// The finest level's operator at points x .. x+15 of the row starting at `row`, from their codes
+// (0 in the lanes outside `in`): the couplings to the four neighbours, and the diagonal or its
+// inverse.
+struct Coefficients16 {
+  __m512 e, w, s, n, d;
+};
+inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __mmask16 in,
+                                          bool inverse) {
+  const std::uint8_t* code = &L.code[row + x];
+  const __m128i here = _mm_maskz_loadu_epi8(in, code), west = _mm_maskz_loadu_epi8(in, code - 1),
+                north = _mm_maskz_loadu_epi8(in, code - L.stride);
+  const __m512 one = _mm512_set1_ps(1.0f);
+  const auto bit = [&](__m128i v, std::uint8_t b) {
+    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
+  };
+  Coefficients16 k;
+  k.e = bit(here, kCodeEast);
+  k.w = bit(west, kCodeEast);
+  k.s = bit(here, kCodeSouth);
+  k.n = bit(north, kCodeSouth);
+  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(7));
+  k.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links),
+                              _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
+  // Anchored points are along the curves: most groups of sixteen have none.
+  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
+  if (anchored)
+    k.d = _mm512_mask_loadu_ps(k.d, anchored, &(inverse ? L.inv_diag : L.diag)[row + x]);
+  return k;
+}
+#endif
+
+// The couplings of the row starting at `row` and its diagonal (or its inverse): a coarse level's
+// arrays, or on the finest level its codes decoded into buffers of the thread (the same floats as
+// arrays would hold, so the loops below compute the same bits on every level; AVX-512 builds
+// decode the codes in registers instead).
+struct RowOperator {
+  RowCouplings a;
+  const float* d;
+};
+RowOperator row_operator(const Level& L, size_t row, bool inverse) {
+  if (L.code.empty()) return {RowCouplings(L, row), &(inverse ? L.inv_diag : L.diag)[row]};
+  thread_local std::vector<float> buffer;
+  const size_t part = size_t(L.w);
+  if (buffer.size() < 5 * part) buffer.resize(5 * part);
+  float *east = buffer.data(), *west = east + part, *south = west + part, *north = south + part,
+        *d = north + part;
+  const std::uint8_t* code = &L.code[row];
+  const std::vector<float>& stored = inverse ? L.inv_diag : L.diag;
+  const float* by_links = inverse ? kLinksInverse : kLinksDiag;
+  for (int x = 0; x < L.w; ++x) {
+    east[x] = code[x] & kCodeEast ? 1.0f : 0.0f;
+    west[x] = code[x - 1] & kCodeEast ? 1.0f : 0.0f;
+    south[x] = code[x] & kCodeSouth ? 1.0f : 0.0f;
+    north[x] = code[x - L.stride] & kCodeSouth ? 1.0f : 0.0f;
+    d[x] = code[x] & kCodeAnchored ? stored[row + x] : by_links[code[x] >> kCodeLinksShift];
+  }
+  return {RowCouplings(east, west, south, north, L.stride), d};
+}
+
 // Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
 // equation asks given its neighbours. Only the points of that parity are computed, every channel
 // with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
 template <int NC>
 void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   const size_t n = L.padded(), row = L.at(0, y);
-  const RowCouplings a(L, row);
-  const int s = a.stride;
-  const float* __restrict id = &L.inv_diag[row];
+  const int s = L.stride;
   float* __restrict e[NC];
   const float* __restrict b[NC];
   for (int c = 0; c < NC; ++c) {
     e[c] = &L.e[c * n + row];
     b[c] = &L.rhs[c * n + row];
   }
-#if defined(__AVX512F__)
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
   // Sixteen points at a time, both colours computed and only this parity's stored (masked), with
   // the scalar loops' operations in their order (the compiler contracts them to the same fused
-  // multiply-adds): the same bits, four to eight times fewer instructions.
-  const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
-  for (int x = 0; x < L.w; x += 16) {
-    const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
-    const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
-    const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
-    __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
-    if (a.nine_point) pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
-    for (int c = 0; c < NC; ++c) {
-      const float* ec = e[c];
-      __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-      t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-      t = _mm512_fmadd_ps(ps, load(ec + s), t);
-      t = _mm512_fmadd_ps(pn, load(ec - s), t);
-      if (a.nine_point) {
-        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
-        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
-        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
-        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
-        t = _mm512_add_ps(t, u);
+  // multiply-adds): the same bits, four to eight times fewer instructions. The finest level's
+  // codes are decoded in registers.
+  {
+    const bool finest = !L.code.empty();
+    const RowCouplings a =
+        finest ? RowCouplings(nullptr, nullptr, nullptr, nullptr, s) : RowCouplings(L, row);
+    const float* id = finest ? nullptr : &L.inv_diag[row];
+    const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
+    for (int x = 0; x < L.w; x += 16) {
+      const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+      __m512 pe, pw, ps, pn, d;
+      __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
+      if (finest) {
+        const Coefficients16 k = finest_coefficients(L, row, x, in, true);
+        pe = k.e, pw = k.w, ps = k.s, pn = k.n, d = k.d;
+      } else {
+        pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+        if (a.nine_point)
+          pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       }
-      _mm512_mask_storeu_ps(e[c] + x, in & parity, _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        if (a.nine_point) {
+          __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+          u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+          u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+          u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+          t = _mm512_add_ps(t, u);
+        }
+        _mm512_mask_storeu_ps(e[c] + x, in & parity,
+                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      }
     }
   }
   return;
 #endif
+  const RowOperator op = row_operator(L, row, true);
+  const RowCouplings& a = op.a;
+  const float* __restrict id = op.d;
   if (!a.nine_point) {
     for (int x = x_parity; x < L.w; x += 2) {
       const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
@@ -866,25 +983,53 @@ void Multigrid<NC>::residual_row(int l, int y, const std::vector<float>* b_plane
   const Level& L = levels_[l];
   const size_t n = L.padded(), row = L.at(0, y);
   const int w = L.w;
-  const RowCouplings a(L, row);
-  const float* __restrict d = &L.diag[row];
-  for (int c = 0; c < NC; ++c) {
-    const float* __restrict e = &e_planes[c * n + row];
-    float* __restrict r = out[c];
-    a.neighbour_sum(e, r, w);
-    if (b_planes) {
-      const float* __restrict b = &(*b_planes)[c * n + row];
-      for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
-    } else {
-      for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // The finest level, its codes decoded in registers: the operations of the loops below in their
+  // order, as the compiler vectorises and contracts them (the same bits).
+  if (!L.code.empty()) {
+    const int s = L.stride;
+    for (int x = 0; x < w; x += 16) {
+      const __mmask16 in = w - x >= 16 ? 0xFFFF : __mmask16((1u << (w - x)) - 1);
+      const Coefficients16 k = finest_coefficients(L, row, x, in, false);
+      for (int c = 0; c < NC; ++c) {
+        const float* e = &e_planes[c * n + row + x];
+        const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
+        __m512 t = _mm512_mul_ps(k.w, load(e - 1));
+        t = _mm512_fmadd_ps(k.e, load(e + 1), t);
+        t = _mm512_fmadd_ps(k.s, load(e + s), t);
+        t = _mm512_fmadd_ps(k.n, load(e - s), t);
+        const __m512 r =
+            b_planes ? _mm512_add_ps(
+                           _mm512_fnmadd_ps(k.d, load(e), load(&(*b_planes)[c * n + row + x])), t)
+                     : _mm512_fnmadd_ps(k.d, load(e), t);
+        _mm512_mask_storeu_ps(out[c] + x, in, r);
+      }
     }
-    if (norms) {  // while the row is in cache
+  } else
+#endif
+  {
+    const RowOperator op = row_operator(L, row, false);
+    const float* __restrict d = op.d;
+    for (int c = 0; c < NC; ++c) {
+      const float* __restrict e = &e_planes[c * n + row];
+      float* __restrict r = out[c];
+      op.a.neighbour_sum(e, r, w);
+      if (b_planes) {
+        const float* __restrict b = &(*b_planes)[c * n + row];
+        for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
+      } else {
+        for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
+      }
+    }
+  }
+  if (norms)  // while the row is in cache
+    for (int c = 0; c < NC; ++c) {
+      const float* __restrict r = out[c];
       float sum = 0;
 #pragma omp simd reduction(+ : sum)
       for (int x = 0; x < w; ++x) sum += r[x] * r[x];
       norms[c] = sum;
     }
-  }
 }
 
 // out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded. Without
