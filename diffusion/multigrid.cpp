@@ -1080,6 +1080,52 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   const Prolongation& P = prolong_[l];
   const size_t nc = C.padded();
   const int cs = C.stride;
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // Sixteen coarse points at a time: the fine rows' even and odd points gathered from 32 in
+  // registers, and the sum below term by term in its order (the compiler contracts it to the
+  // same chain of fused multiply-adds).
+  const int fw = levels_[l].w;  // fine rows are readable from x = -1 to fw
+  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+  const auto lanes = [](int count) {
+    return count >= 16  ? __mmask16(0xFFFF)
+           : count <= 0 ? __mmask16(0)
+                        : __mmask16((1u << count) - 1);
+  };
+  for (int I = 0; I < C.w; I += 16) {
+    const size_t kc = C.at(I, J);
+    const __mmask16 in = lanes(C.w - I);
+    const auto load = [&](const std::vector<float>& v, size_t k) {
+      return _mm512_maskz_loadu_ps(in, &v[k]);
+    };
+    const __m512 x0 = load(P.x0, kc), x1 = load(P.x1, kc - 1), y0 = load(P.y0, kc),
+                 y1 = load(P.y1, kc - cs), c00 = load(P.c00, kc), c10 = load(P.c10, kc - 1),
+                 c01 = load(P.c01, kc - cs), c11 = load(P.c11, kc - cs - 1);
+    const __mmask16 alive =
+        _mm_test_epi8_mask(_mm_maskz_loadu_epi8(in, &C.alive[kc]), _mm_set1_epi8(1));
+    const int x = 2 * I;
+    // Fine points x + 2i + offset, i = 0..15, of a row (offset -1, 0 or 1).
+    const auto fine = [&](const float* r, int offset, const __m512i& pick) {
+      const int o = x + offset - (offset == 1 ? 1 : 0);  // the first of the 32 loaded
+      const __m512 lo = _mm512_maskz_loadu_ps(lanes(fw + 1 - o), r + o);
+      const __m512 hi = _mm512_maskz_loadu_ps(lanes(fw + 1 - o - 16), r + o + 16);
+      return _mm512_permutex2var_ps(lo, pick, hi);
+    };
+    for (int c = 0; c < NC; ++c) {
+      const float *rn = north[c], *r0 = centre[c], *rs = south[c];
+      __m512 v = _mm512_fmadd_ps(x0, fine(r0, 1, odd), fine(r0, 0, even));
+      v = _mm512_fmadd_ps(x1, fine(r0, -1, even), v);
+      v = _mm512_fmadd_ps(y0, fine(rs, 0, even), v);
+      v = _mm512_fmadd_ps(y1, fine(rn, 0, even), v);
+      v = _mm512_fmadd_ps(c00, fine(rs, 1, odd), v);
+      v = _mm512_fmadd_ps(c10, fine(rs, -1, even), v);
+      v = _mm512_fmadd_ps(c01, fine(rn, 1, odd), v);
+      v = _mm512_fmadd_ps(c11, fine(rn, -1, even), v);
+      _mm512_mask_storeu_ps(&C.rhs[c * nc + kc], in, _mm512_maskz_mov_ps(alive, v));
+    }
+  }
+  return;
+#endif
   for (int I = 0; I < C.w; ++I) {
     const size_t kc = C.at(I, J);
     const int x = 2 * I;
@@ -1464,6 +1510,7 @@ float Multigrid<NC>::change_of_row(int y, std::vector<float>& before) const {
   for (int c = 0; c < NC; ++c) {
     const float* __restrict e = &L.e[c * n + L.at(0, y)];
     float* __restrict b = &before[c * n + L.at(0, y)];
+#pragma omp simd reduction(max : m)
     for (int x = 0; x < L.w; ++x) {
       m = std::max(m, std::abs(e[x] - b[x]));
       b[x] = e[x];
