@@ -64,6 +64,11 @@ constexpr std::uint8_t kCodeSouth = 2;     // coupled to the south neighbour: as
 constexpr std::uint8_t kCodeAnchored = 4;  // diag and inv_diag are not the link count's
 constexpr int kCodeLinksShift = 4;         // open links (0 on fixed points): diag, if not anchored
 
+// The finest level's diagonal (and its inverse) at a point that is not anchored, by its count of
+// open links (Level::code): the same floats as float(links) + 0 and 1.0f / that.
+constexpr float kLinksDiag[16] = {0, 1, 2, 3, 4};
+constexpr float kLinksInverse[16] = {0, 1.0f / 1, 1.0f / 2, 1.0f / 3, 1.0f / 4};
+
 struct Level {
   int w = 0, h = 0;  // interior size
   int stride = 0;    // w + 2
@@ -72,8 +77,8 @@ struct Level {
   std::vector<float> ae, as, ase, asw;  // empty on the finest level (see code)
   // The finest level's couplings are 0 or 1 (a link open between two free points, or not) and
   // its diagonal the count of open links, plus the anchor weight where there is one: `code` holds
-  // them in a byte a point, which the cycles read instead of 16 bytes of floats (they are bound by
-  // memory). diag and inv_diag are kept, and read in the cycles only where a point is anchored.
+  // them in a byte a point, which the cycles read instead of 16 bytes of floats. There diag and
+  // inv_diag hold the diagonal only where a point is anchored (see diag_of()).
   std::vector<std::uint8_t> code;
   std::vector<std::uint8_t> alive;  // 1 on free points
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
@@ -230,12 +235,11 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
   const Problem& p = problem_;
   const std::vector<std::uint8_t> reached = reached_from_fixed(p);
   int floating = 0;
-  fixed = p.fixed;
-  for (size_t i = 0; i < p.pixel_count(); ++i)
-    if (!reached[i]) {
-      fixed[i] = 1;
-      ++floating;
-    }
+  fixed.resize(p.pixel_count());
+  for (size_t i = 0; i < p.pixel_count(); ++i) {
+    fixed[i] = p.fixed[i] | !reached[i];
+    floating += !reached[i];
+  }
   return floating;
 }
 
@@ -268,31 +272,24 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
         const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
         const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
         const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
-        float diag = 0, inv_diag = 0;
         std::uint8_t code = 0;
         if (!fixed[i]) {
-          const int links = open_e + open_s + open_w + open_n;
-          diag = float(links) + p.anchor_weight[i];
-          inv_diag = 1.0f / diag;  // > 0: a free reached pixel is anchored or linked
-          code = std::uint8_t(links << kCodeLinksShift);
+          code = std::uint8_t((open_e + open_s + open_w + open_n) << kCodeLinksShift);
           if (p.anchor_weight[i] > 0) code |= kCodeAnchored;
           if (open_e && !fixed[i + 1]) code |= kCodeEast;
           if (open_s && !fixed[i + p.width]) code |= kCodeSouth;
         }
         const std::uint8_t alive = !fixed[i];
-        if (full) {
-          L.alive[k] = alive;
-          L.diag[k] = diag;
-          L.inv_diag[k] = inv_diag;
-          L.code[k] = code;
-          continue;
-        }
-        bool c = L.alive[k] != alive || L.code[k] != code;
+        bool c = full || L.alive[k] != alive || L.code[k] != code;
         L.alive[k] = alive;
         L.code[k] = code;
-        c |= update(L.diag[k], diag);
-        c |= update(L.inv_diag[k], inv_diag);
-        changed[k] = c;
+        // The diagonal of an anchored point (elsewhere it is the code's: diag_of()).
+        if (code & kCodeAnchored) {
+          const float diag = float(code >> kCodeLinksShift) + p.anchor_weight[i];
+          c |= update(L.diag[k], diag);
+          c |= update(L.inv_diag[k], 1.0f / diag);
+        }
+        if (!full) changed[k] = c;
       }
   });
   return changed;
@@ -308,6 +305,12 @@ float coupling(const std::vector<float>& v, size_t k) {
   return v.empty() ? 0.0f : v[k];
 }
 
+// The diagonal at point k (on the finest level from its code, but where it is anchored).
+float diag_of(const Level& L, size_t k) {
+  if (L.code.empty() || (L.code[k] & kCodeAnchored)) return L.diag[k];
+  return kLinksDiag[L.code[k] >> kCodeLinksShift];
+}
+
 // The couplings of point k to its east and south neighbours (on the finest level, from its code).
 float east_of(const Level& L, size_t k) {
   return L.code.empty() ? L.ae[k] : (L.code[k] & kCodeEast ? 1.0f : 0.0f);
@@ -318,7 +321,7 @@ float south_of(const Level& L, size_t k) {
 
 Stencil stencil_at(const Level& F, size_t k) {
   const int fs = F.stride;
-  return Stencil{F.diag[k],
+  return Stencil{diag_of(F, k),
                  east_of(F, k),
                  east_of(F, k - 1),
                  south_of(F, k - fs),
@@ -468,9 +471,10 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
   for (int y = 0; y < F.h; ++y)
     for (int x = 0; x < F.w; ++x) {
       const size_t k = F.at(x, y);
-      const bool plain = F.alive[k] && F.diag[k] == 4.0f && east_of(F, k) == 1.0f &&
-                         south_of(F, k) == 1.0f && east_of(F, k - 1) == 1.0f &&
-                         south_of(F, k - fs) == 1.0f;
+      const std::uint8_t c = F.code[k];
+      const bool four = c & kCodeAnchored ? F.diag[k] == 4.0f : c >> kCodeLinksShift == 4;
+      const bool plain = F.alive[k] && four && (c & kCodeEast) && (c & kCodeSouth) &&
+                         (F.code[k - 1] & kCodeEast) && (F.code[k - fs] & kCodeSouth);
       S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
     }
   std::vector<std::uint8_t> out(C.padded(), 0);
@@ -666,7 +670,7 @@ void Multigrid<NC>::build_coarsest() {
   const int s = L.stride;
   for (int r = 0; r < m; ++r) {
     const size_t k = coarse_points_[r];
-    M(r, r) = L.diag[k];
+    M(r, r) = diag_of(L, k);
     const auto couple = [&](size_t k2, float a) {
       if (index[k2] >= 0 && a != 0.0f) {
         M(r, index[k2]) -= a;
@@ -740,11 +744,6 @@ struct RowCouplings {
                 pne[x] * e[x - s + 1];
   }
 };
-
-// The finest level's diagonal (and its inverse) at a point that is not anchored, by its count of
-// open links (Level::code): the same floats as float(links) + 0 and 1.0f / that.
-constexpr float kLinksDiag[16] = {0, 1, 2, 3, 4};
-constexpr float kLinksInverse[16] = {0, 1.0f / 1, 1.0f / 2, 1.0f / 3, 1.0f / 4};
 
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
 // The finest level's operator at points x .. x+15 of the row starting at `row`, from their codes
