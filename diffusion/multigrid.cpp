@@ -25,6 +25,7 @@
 #include <mutex>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 
 #include "diffusion/timer.hpp"
 
@@ -1439,6 +1440,75 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
   const size_t np = p.pixel_count(), nf = F.padded();
   r_padded.resize(nf * NC);  // ghost points stay 0; every interior point is written below
   std::vector<double> rows(size_t(p.height) * NC * 2, 0.0);
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // Eight pixels at a time: every test of the loop below a mask, each term added only where the
+  // loop adds it, in its order (the same bits); the row sums then in pixel order.
+  const auto load = [](const T* q, __mmask8 m) {
+    if constexpr (std::is_same_v<T, float>)
+      return _mm512_cvtps_pd(_mm256_maskz_loadu_ps(m, q));
+    else
+      return _mm512_maskz_loadu_pd(m, q);
+  };
+  const auto widen = [](const float* q, __mmask8 m) {
+    return _mm512_cvtps_pd(_mm256_maskz_loadu_ps(m, q));
+  };
+  const auto bits = [](const std::uint8_t* q, __mmask8 m, std::uint8_t b) {
+    return __mmask8(_mm_test_epi8_mask(_mm_maskz_loadu_epi8(m, q), _mm_set1_epi8(char(b))));
+  };
+  const int W = p.width;
+  for_rows(p.height, p.width * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      double* sums = &rows[size_t(y) * NC * 2];
+      for (int x = 0; x < W; x += 8) {
+        const __mmask8 in = W - x >= 8 ? 0xFF : __mmask8((1u << (W - x)) - 1);
+        const size_t i = p.index(x, y), k = F.at(x, y);
+        const __mmask8 free = __mmask8(in & ~bits(&fixed_[i], in, 1));
+        // East, west, south, north: the link is open (from a free pixel), the neighbour fixed.
+        const __mmask8 west_in = x == 0 ? __mmask8(in & 0xFE) : in;
+        const __mmask8 open[4] = {
+            __mmask8(free & bits(&p.links[i], in, kOpenEast)),
+            __mmask8(free & bits(&p.links[i] - 1, west_in, kOpenEast)),
+            __mmask8(free & bits(&p.links[i], in, kOpenSouth)),
+            y > 0 ? __mmask8(free & bits(&p.links[i] - W, in, kOpenSouth)) : __mmask8(0)};
+        const std::ptrdiff_t nb[4] = {1, -1, W, -W};
+        __mmask8 fixed_nb[4];
+        for (int q = 0; q < 4; ++q) fixed_nb[q] = bits(&fixed_[i] + nb[q], open[q], 1);
+        const __m512d w = widen(&p.anchor_weight[i], in);
+        const __mmask8 anchored = _mm512_mask_cmp_pd_mask(free, w, _mm512_setzero_pd(), _CMP_GT_OQ);
+        for (int c = 0; c < NC; ++c) {
+          const T* uc = &u[c * np + i];
+          const __m512d ui = load(uc, free);
+          __m512d b = _mm512_setzero_pd(), au = _mm512_setzero_pd();
+          if (!p.rhs.empty())
+            b = _mm512_xor_pd(widen(&p.rhs[c * np + i], free), _mm512_set1_pd(-0.0));
+          if (anchored) {
+            au = _mm512_mask3_fmadd_pd(ui, w, au, anchored);
+            b = _mm512_mask3_fmadd_pd(w, widen(&p.value[c * np + i], anchored), b, anchored);
+          }
+          for (int q = 0; q < 4; ++q) {
+            if (!open[q]) continue;
+            const __m512d un = load(uc + nb[q], open[q]);
+            au = _mm512_mask_add_pd(au, open[q], au, ui);
+            b = _mm512_mask_add_pd(b, __mmask8(open[q] & fixed_nb[q]), b, un);
+            au = _mm512_mask_sub_pd(au, __mmask8(open[q] & ~fixed_nb[q]), au, un);
+          }
+          const __m512d r = _mm512_maskz_sub_pd(free, b, au);
+          _mm256_mask_storeu_ps(&r_padded[c * nf + k], in, _mm512_cvtpd_ps(r));
+          alignas(64) double rs[8], bs[8];
+          _mm512_store_pd(rs, r);
+          _mm512_store_pd(bs, b);
+          double& r2 = sums[c * 2];
+          double& b2 = sums[c * 2 + 1];
+          for (int j = 0; j < 8; ++j)
+            if (free >> j & 1) {
+              r2 = std::fma(rs[j], rs[j], r2);
+              b2 = std::fma(bs[j], bs[j], b2);
+            }
+        }
+      }
+    }
+  });
+#else
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < p.width; ++x) {
@@ -1475,6 +1545,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
         }
       }
   });
+#endif
   std::array<double, NC> norms{};
   for (int y = 0; y < p.height; ++y)
     for (int c = 0; c < NC; ++c) {
