@@ -238,10 +238,34 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
   int floating = 0;
   fixed.resize(p.pixel_count());
   for (size_t i = 0; i < p.pixel_count(); ++i) {
-    fixed[i] = p.fixed[i] | !reached[i];
+    fixed[i] = std::uint8_t((p.fixed[i] != 0) | !reached[i]);  // 0 or 1, whatever p.fixed holds
     floating += !reached[i];
   }
   return floating;
+}
+
+// The codes (Level::code) and alive flags of `count` points of a row of the finest level, from
+// the problem's links of the points, their west neighbours (`west`) and north neighbours, and the
+// fixed flags of the points and their east and south neighbours; with kTrack, `changed` says
+// which of them differ from what code and alive held. No branch: it vectorises.
+template <bool kTrack>
+void finest_codes(int count, const std::uint8_t* __restrict links,
+                  const std::uint8_t* __restrict west, const std::uint8_t* __restrict north,
+                  const std::uint8_t* __restrict fixed, const std::uint8_t* __restrict east,
+                  const std::uint8_t* __restrict south, const float* __restrict weight,
+                  std::uint8_t* __restrict code, std::uint8_t* __restrict alive,
+                  std::uint8_t* __restrict changed) {
+  for (int x = 0; x < count; ++x) {
+    const int open_e = links[x] & kOpenEast, open_s = (links[x] & kOpenSouth) >> 1;
+    const int open_w = west[x] & kOpenEast, open_n = (north[x] & kOpenSouth) >> 1;
+    const int is_free = fixed[x] ^ 1;
+    const int c = ((open_e + open_s + open_w + open_n) << kCodeLinksShift | (weight[x] > 0) << 2 |
+                   (open_s & (south[x] ^ 1)) << 1 | (open_e & (east[x] ^ 1))) *
+                  is_free;
+    if constexpr (kTrack) changed[x] = (alive[x] != is_free) | (code[x] != c);
+    alive[x] = std::uint8_t(is_free);
+    code[x] = std::uint8_t(c);
+  }
 }
 
 // Finest level: the negative 5-point Laplacian over open links, restricted to free pixels.
@@ -266,32 +290,43 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   } else {
     changed.assign(n, 0);
   }
-  for_rows(L.h, L.w, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < L.w; ++x) {
-        const size_t i = p.index(x, y), k = L.at(x, y);
-        const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
-        const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
-        const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
-        std::uint8_t code = 0;
-        if (!fixed[i]) {
-          code = std::uint8_t((open_e + open_s + open_w + open_n) << kCodeLinksShift);
-          if (p.anchor_weight[i] > 0) code |= kCodeAnchored;
-          if (open_e && !fixed[i + 1]) code |= kCodeEast;
-          if (open_s && !fixed[i + p.width]) code |= kCodeSouth;
-        }
-        const std::uint8_t alive = !fixed[i];
-        bool c = full || L.alive[k] != alive || L.code[k] != code;
-        L.alive[k] = alive;
-        L.code[k] = code;
-        // The diagonal of an anchored point (elsewhere it is the code's: diag_of()).
-        if (code & kCodeAnchored) {
-          const float diag = float(code >> kCodeLinksShift) + p.anchor_weight[i];
-          c |= update(L.diag[k], diag);
-          c |= update(L.inv_diag[k], 1.0f / diag);
-        }
-        if (!full) changed[k] = c;
+  const int W = p.width, H = p.height;
+  const std::vector<std::uint8_t> no_links(size_t(W), 0);
+  for_rows(H, W, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = p.index(0, y), k0 = L.at(0, y);
+      const std::uint8_t* links = &p.links[row];
+      const std::uint8_t* north = y > 0 ? links - W : no_links.data();
+      const std::uint8_t* fixed_row = &fixed[row];
+      const std::uint8_t* south = y + 1 < H ? fixed_row + W : fixed_row;  // (no link there)
+      const float* weight = &p.anchor_weight[row];
+      std::uint8_t *code = &L.code[k0], *alive = &L.alive[k0];
+      std::uint8_t* changed_row = full ? nullptr : &changed[k0];
+      const std::uint8_t none = 0, one = 1;
+      const auto codes = [&](int x, int count, const std::uint8_t* west, const std::uint8_t* east) {
+        const auto run = [&](auto track) {
+          finest_codes<decltype(track)::value>(count, links + x, west, north + x, fixed_row + x,
+                                               east, south + x, weight + x, code + x, alive + x,
+                                               track ? changed_row + x : nullptr);
+        };
+        if (changed_row)
+          run(std::true_type{});
+        else
+          run(std::false_type{});
+      };
+      // The first and last points apart (no west link, no east neighbour).
+      codes(0, 1, &none, W > 1 ? fixed_row + 1 : &one);
+      if (W > 2) codes(1, W - 2, links, fixed_row + 2);
+      if (W > 1) codes(W - 1, 1, links + W - 2, &one);
+      // The diagonal of anchored points (elsewhere it is the code's: diag_of()).
+      for (int x = 0; x < W; ++x) {
+        if (!(code[x] & kCodeAnchored)) continue;
+        const float diag = float(code[x] >> kCodeLinksShift) + weight[x];
+        bool c = update(L.diag[k0 + x], diag);
+        c |= update(L.inv_diag[k0 + x], 1.0f / diag);
+        if (changed_row) changed_row[x] |= c;
       }
+    }
   });
   return changed;
 }
