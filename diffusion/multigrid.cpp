@@ -3,7 +3,8 @@
 // Storage: every level keeps its arrays on a grid padded by one ghost point on each side, so
 // stencils never branch at the border: ghost values and couplings to ghosts are zero.
 // Operator at point p:  (A e)_p = diag_p e_p - sum_q a_pq e_q  over the 8 neighbours, with the
-// couplings stored once per pair: east, south, south-east and south-west of p.
+// couplings stored once per pair: east, south, south-east and south-west of p. The finest level
+// stores its 0/1 couplings and its link counts as a byte per point (Level::code).
 #include "diffusion/multigrid.hpp"
 
 #include <tbb/blocked_range.h>
@@ -24,6 +25,7 @@
 #include <mutex>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 
 #include "diffusion/timer.hpp"
 
@@ -57,12 +59,28 @@ double error_estimate(double delta, double rho) {
   return kErrorSafety * delta * rho / (1 - rho);
 }
 
+// Bits of Level::code.
+constexpr std::uint8_t kCodeEast = 1;      // coupled to the east neighbour: ae = 1
+constexpr std::uint8_t kCodeSouth = 2;     // coupled to the south neighbour: as = 1
+constexpr std::uint8_t kCodeAnchored = 4;  // diag and inv_diag are not the link count's
+constexpr int kCodeLinksShift = 4;         // open links (0 on fixed points): diag, if not anchored
+
+// The finest level's diagonal (and its inverse) at a point that is not anchored, by its count of
+// open links (Level::code): the same floats as float(links) + 0 and 1.0f / that.
+constexpr float kLinksDiag[16] = {0, 1, 2, 3, 4};
+constexpr float kLinksInverse[16] = {0, 1.0f / 1, 1.0f / 2, 1.0f / 3, 1.0f / 4};
+
 struct Level {
   int w = 0, h = 0;  // interior size
   int stride = 0;    // w + 2
   bool nine_point = false;
-  std::vector<float> diag, inv_diag;  // inv_diag is 0 on fixed points: the smoother keeps e = 0
-  std::vector<float> ae, as, ase, asw;
+  std::vector<float> diag, inv_diag;    // inv_diag is 0 on fixed points: the smoother keeps e = 0
+  std::vector<float> ae, as, ase, asw;  // empty on the finest level (see code)
+  // The finest level's couplings are 0 or 1 (a link open between two free points, or not) and
+  // its diagonal the count of open links, plus the anchor weight where there is one: `code` holds
+  // them in a byte a point, which the cycles read instead of 16 bytes of floats. There diag and
+  // inv_diag hold the diagonal only where a point is anchored (see diag_of()).
+  std::vector<std::uint8_t> code;
   std::vector<std::uint8_t> alive;  // 1 on free points
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
@@ -218,13 +236,36 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
   const Problem& p = problem_;
   const std::vector<std::uint8_t> reached = reached_from_fixed(p);
   int floating = 0;
-  fixed = p.fixed;
-  for (size_t i = 0; i < p.pixel_count(); ++i)
-    if (!reached[i]) {
-      fixed[i] = 1;
-      ++floating;
-    }
+  fixed.resize(p.pixel_count());
+  for (size_t i = 0; i < p.pixel_count(); ++i) {
+    fixed[i] = std::uint8_t((p.fixed[i] != 0) | !reached[i]);  // 0 or 1, whatever p.fixed holds
+    floating += !reached[i];
+  }
   return floating;
+}
+
+// The codes (Level::code) and alive flags of `count` points of a row of the finest level, from
+// the problem's links of the points, their west neighbours (`west`) and north neighbours, and the
+// fixed flags of the points and their east and south neighbours; with kTrack, `changed` says
+// which of them differ from what code and alive held. No branch: it vectorises.
+template <bool kTrack>
+void finest_codes(int count, const std::uint8_t* __restrict links,
+                  const std::uint8_t* __restrict west, const std::uint8_t* __restrict north,
+                  const std::uint8_t* __restrict fixed, const std::uint8_t* __restrict east,
+                  const std::uint8_t* __restrict south, const float* __restrict weight,
+                  std::uint8_t* __restrict code, std::uint8_t* __restrict alive,
+                  std::uint8_t* __restrict changed) {
+  for (int x = 0; x < count; ++x) {
+    const int open_e = links[x] & kOpenEast, open_s = (links[x] & kOpenSouth) >> 1;
+    const int open_w = west[x] & kOpenEast, open_n = (north[x] & kOpenSouth) >> 1;
+    const int is_free = fixed[x] ^ 1;
+    const int c = ((open_e + open_s + open_w + open_n) << kCodeLinksShift | (weight[x] > 0) << 2 |
+                   (open_s & (south[x] ^ 1)) << 1 | (open_e & (east[x] ^ 1))) *
+                  is_free;
+    if constexpr (kTrack) changed[x] = (alive[x] != is_free) | (code[x] != c);
+    alive[x] = std::uint8_t(is_free);
+    code[x] = std::uint8_t(c);
+  }
 }
 
 // Finest level: the negative 5-point Laplacian over open links, restricted to free pixels.
@@ -243,42 +284,49 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   const size_t n = L.padded();
   std::vector<std::uint8_t> changed;
   if (full) {
-    for (auto* v : {&L.diag, &L.inv_diag, &L.ae, &L.as}) v->assign(n, 0.0f);
+    for (auto* v : {&L.diag, &L.inv_diag}) v->assign(n, 0.0f);
+    L.code.assign(n, 0);
     L.alive.assign(n, 0);
   } else {
     changed.assign(n, 0);
   }
-  for_rows(L.h, L.w, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < L.w; ++x) {
-        const size_t i = p.index(x, y), k = L.at(x, y);
-        const bool open_e = p.links[i] & kOpenEast, open_s = p.links[i] & kOpenSouth;
-        const bool open_w = x > 0 && (p.links[i - 1] & kOpenEast);
-        const bool open_n = y > 0 && (p.links[i - p.width] & kOpenSouth);
-        float diag = 0, inv_diag = 0, ae = 0, as = 0;
-        if (!fixed[i]) {
-          diag = float(open_e + open_s + open_w + open_n) + p.anchor_weight[i];
-          inv_diag = 1.0f / diag;  // > 0: a free reached pixel is anchored or linked
-          if (open_e && !fixed[i + 1]) ae = 1.0f;
-          if (open_s && !fixed[i + p.width]) as = 1.0f;
-        }
-        const std::uint8_t alive = !fixed[i];
-        if (full) {
-          L.alive[k] = alive;
-          L.diag[k] = diag;
-          L.inv_diag[k] = inv_diag;
-          L.ae[k] = ae;
-          L.as[k] = as;
-          continue;
-        }
-        bool c = L.alive[k] != alive;
-        L.alive[k] = alive;
-        c |= update(L.diag[k], diag);
-        c |= update(L.inv_diag[k], inv_diag);
-        c |= update(L.ae[k], ae);
-        c |= update(L.as[k], as);
-        changed[k] = c;
+  const int W = p.width, H = p.height;
+  const std::vector<std::uint8_t> no_links(size_t(W), 0);
+  for_rows(H, W, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = p.index(0, y), k0 = L.at(0, y);
+      const std::uint8_t* links = &p.links[row];
+      const std::uint8_t* north = y > 0 ? links - W : no_links.data();
+      const std::uint8_t* fixed_row = &fixed[row];
+      const std::uint8_t* south = y + 1 < H ? fixed_row + W : fixed_row;  // (no link there)
+      const float* weight = &p.anchor_weight[row];
+      std::uint8_t *code = &L.code[k0], *alive = &L.alive[k0];
+      std::uint8_t* changed_row = full ? nullptr : &changed[k0];
+      const std::uint8_t none = 0, one = 1;
+      const auto codes = [&](int x, int count, const std::uint8_t* west, const std::uint8_t* east) {
+        const auto run = [&](auto track) {
+          finest_codes<decltype(track)::value>(count, links + x, west, north + x, fixed_row + x,
+                                               east, south + x, weight + x, code + x, alive + x,
+                                               track ? changed_row + x : nullptr);
+        };
+        if (changed_row)
+          run(std::true_type{});
+        else
+          run(std::false_type{});
+      };
+      // The first and last points apart (no west link, no east neighbour).
+      codes(0, 1, &none, W > 1 ? fixed_row + 1 : &one);
+      if (W > 2) codes(1, W - 2, links, fixed_row + 2);
+      if (W > 1) codes(W - 1, 1, links + W - 2, &one);
+      // The diagonal of anchored points (elsewhere it is the code's: diag_of()).
+      for (int x = 0; x < W; ++x) {
+        if (!(code[x] & kCodeAnchored)) continue;
+        const float diag = float(code[x] >> kCodeLinksShift) + weight[x];
+        bool c = update(L.diag[k0 + x], diag);
+        c |= update(L.inv_diag[k0 + x], 1.0f / diag);
+        if (changed_row) changed_row[x] |= c;
       }
+    }
   });
   return changed;
 }
@@ -293,13 +341,27 @@ float coupling(const std::vector<float>& v, size_t k) {
   return v.empty() ? 0.0f : v[k];
 }
 
+// The diagonal at point k (on the finest level from its code, but where it is anchored).
+float diag_of(const Level& L, size_t k) {
+  if (L.code.empty() || (L.code[k] & kCodeAnchored)) return L.diag[k];
+  return kLinksDiag[L.code[k] >> kCodeLinksShift];
+}
+
+// The couplings of point k to its east and south neighbours (on the finest level, from its code).
+float east_of(const Level& L, size_t k) {
+  return L.code.empty() ? L.ae[k] : (L.code[k] & kCodeEast ? 1.0f : 0.0f);
+}
+float south_of(const Level& L, size_t k) {
+  return L.code.empty() ? L.as[k] : (L.code[k] & kCodeSouth ? 1.0f : 0.0f);
+}
+
 Stencil stencil_at(const Level& F, size_t k) {
   const int fs = F.stride;
-  return Stencil{F.diag[k],
-                 F.ae[k],
-                 F.ae[k - 1],
-                 F.as[k - fs],
-                 F.as[k],
+  return Stencil{diag_of(F, k),
+                 east_of(F, k),
+                 east_of(F, k - 1),
+                 south_of(F, k - fs),
+                 south_of(F, k),
                  coupling(F.asw, k - fs + 1),
                  coupling(F.ase, k - fs - 1),
                  coupling(F.ase, k),
@@ -445,8 +507,10 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
   for (int y = 0; y < F.h; ++y)
     for (int x = 0; x < F.w; ++x) {
       const size_t k = F.at(x, y);
-      const bool plain = F.alive[k] && F.diag[k] == 4.0f && F.ae[k] == 1.0f && F.as[k] == 1.0f &&
-                         F.ae[k - 1] == 1.0f && F.as[k - fs] == 1.0f;
+      const std::uint8_t c = F.code[k];
+      const bool four = c & kCodeAnchored ? F.diag[k] == 4.0f : c >> kCodeLinksShift == 4;
+      const bool plain = F.alive[k] && four && (c & kCodeEast) && (c & kCodeSouth) &&
+                         (F.code[k - 1] & kCodeEast) && (F.code[k - fs] & kCodeSouth);
       S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
     }
   std::vector<std::uint8_t> out(C.padded(), 0);
@@ -642,15 +706,15 @@ void Multigrid<NC>::build_coarsest() {
   const int s = L.stride;
   for (int r = 0; r < m; ++r) {
     const size_t k = coarse_points_[r];
-    M(r, r) = L.diag[k];
+    M(r, r) = diag_of(L, k);
     const auto couple = [&](size_t k2, float a) {
       if (index[k2] >= 0 && a != 0.0f) {
         M(r, index[k2]) -= a;
         M(index[k2], r) -= a;
       }
     };
-    couple(k + 1, L.ae[k]);
-    couple(k + s, L.as[k]);
+    couple(k + 1, east_of(L, k));
+    couple(k + s, south_of(L, k));
     if (L.nine_point) {
       couple(k + s + 1, L.ase[k]);
       couple(k + s - 1, L.asw[k]);
@@ -680,6 +744,18 @@ struct RowCouplings {
   int stride;
   bool nine_point;
 
+  RowCouplings(const float* east, const float* west, const float* south, const float* north,
+               int row_stride)
+      : ae(east),
+        aw(west),
+        as(south),
+        an(north),
+        ase(nullptr),
+        anw(nullptr),
+        asw(nullptr),
+        ane(nullptr),
+        stride(row_stride),
+        nine_point(false) {}
   RowCouplings(const Level& L, size_t row)
       : ae(&L.ae[row]),
         aw(&L.ae[row - 1]),
@@ -705,50 +781,126 @@ struct RowCouplings {
   }
 };
 
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+// The finest level's operator at points x .. x+15 of the row starting at `row`, from their codes
+// (0 in the lanes outside `in`): the couplings to the four neighbours, and the diagonal or its
+// inverse.
+struct Coefficients16 {
+  __m512 e, w, s, n, d;
+};
+inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __mmask16 in,
+                                          bool inverse) {
+  const std::uint8_t* code = &L.code[row + x];
+  const __m128i here = _mm_maskz_loadu_epi8(in, code), west = _mm_maskz_loadu_epi8(in, code - 1),
+                north = _mm_maskz_loadu_epi8(in, code - L.stride);
+  const __m512 one = _mm512_set1_ps(1.0f);
+  const auto bit = [&](__m128i v, std::uint8_t b) {
+    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
+  };
+  Coefficients16 k;
+  k.e = bit(here, kCodeEast);
+  k.w = bit(west, kCodeEast);
+  k.s = bit(here, kCodeSouth);
+  k.n = bit(north, kCodeSouth);
+  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(7));
+  k.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links),
+                              _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
+  // Anchored points are along the curves: most groups of sixteen have none.
+  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
+  if (anchored)
+    k.d = _mm512_mask_loadu_ps(k.d, anchored, &(inverse ? L.inv_diag : L.diag)[row + x]);
+  return k;
+}
+#endif
+
+// The couplings of the row starting at `row` and its diagonal (or its inverse): a coarse level's
+// arrays, or on the finest level its codes decoded into buffers of the thread (the same floats as
+// arrays would hold, so the loops below compute the same bits on every level; AVX-512 builds
+// decode the codes in registers instead).
+struct RowOperator {
+  RowCouplings a;
+  const float* d;
+};
+RowOperator row_operator(const Level& L, size_t row, bool inverse) {
+  if (L.code.empty()) return {RowCouplings(L, row), &(inverse ? L.inv_diag : L.diag)[row]};
+  thread_local std::vector<float> buffer;
+  const size_t part = size_t(L.w);
+  if (buffer.size() < 5 * part) buffer.resize(5 * part);
+  float *east = buffer.data(), *west = east + part, *south = west + part, *north = south + part,
+        *d = north + part;
+  const std::uint8_t* code = &L.code[row];
+  const std::vector<float>& stored = inverse ? L.inv_diag : L.diag;
+  const float* by_links = inverse ? kLinksInverse : kLinksDiag;
+  for (int x = 0; x < L.w; ++x) {
+    east[x] = code[x] & kCodeEast ? 1.0f : 0.0f;
+    west[x] = code[x - 1] & kCodeEast ? 1.0f : 0.0f;
+    south[x] = code[x] & kCodeSouth ? 1.0f : 0.0f;
+    north[x] = code[x - L.stride] & kCodeSouth ? 1.0f : 0.0f;
+    d[x] = code[x] & kCodeAnchored ? stored[row + x] : by_links[code[x] >> kCodeLinksShift];
+  }
+  return {RowCouplings(east, west, south, north, L.stride), d};
+}
+
 // Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
 // equation asks given its neighbours. Only the points of that parity are computed, every channel
 // with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
 template <int NC>
 void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   const size_t n = L.padded(), row = L.at(0, y);
-  const RowCouplings a(L, row);
-  const int s = a.stride;
-  const float* __restrict id = &L.inv_diag[row];
+  const int s = L.stride;
   float* __restrict e[NC];
   const float* __restrict b[NC];
   for (int c = 0; c < NC; ++c) {
     e[c] = &L.e[c * n + row];
     b[c] = &L.rhs[c * n + row];
   }
-#if defined(__AVX512F__)
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
   // Sixteen points at a time, both colours computed and only this parity's stored (masked), with
   // the scalar loops' operations in their order (the compiler contracts them to the same fused
-  // multiply-adds): the same bits, four to eight times fewer instructions.
-  const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
-  for (int x = 0; x < L.w; x += 16) {
-    const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
-    const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
-    const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
-    __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
-    if (a.nine_point) pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
-    for (int c = 0; c < NC; ++c) {
-      const float* ec = e[c];
-      __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-      t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-      t = _mm512_fmadd_ps(ps, load(ec + s), t);
-      t = _mm512_fmadd_ps(pn, load(ec - s), t);
-      if (a.nine_point) {
-        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
-        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
-        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
-        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
-        t = _mm512_add_ps(t, u);
+  // multiply-adds): the same bits, four to eight times fewer instructions. The finest level's
+  // codes are decoded in registers.
+  {
+    const bool finest = !L.code.empty();
+    const RowCouplings a =
+        finest ? RowCouplings(nullptr, nullptr, nullptr, nullptr, s) : RowCouplings(L, row);
+    const float* id = finest ? nullptr : &L.inv_diag[row];
+    const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
+    for (int x = 0; x < L.w; x += 16) {
+      const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+      __m512 pe, pw, ps, pn, d;
+      __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
+      if (finest) {
+        const Coefficients16 k = finest_coefficients(L, row, x, in, true);
+        pe = k.e, pw = k.w, ps = k.s, pn = k.n, d = k.d;
+      } else {
+        pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+        if (a.nine_point)
+          pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       }
-      _mm512_mask_storeu_ps(e[c] + x, in & parity, _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        if (a.nine_point) {
+          __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+          u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+          u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+          u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+          t = _mm512_add_ps(t, u);
+        }
+        _mm512_mask_storeu_ps(e[c] + x, in & parity,
+                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      }
     }
   }
   return;
 #endif
+  const RowOperator op = row_operator(L, row, true);
+  const RowCouplings& a = op.a;
+  const float* __restrict id = op.d;
   if (!a.nine_point) {
     for (int x = x_parity; x < L.w; x += 2) {
       const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
@@ -866,25 +1018,53 @@ void Multigrid<NC>::residual_row(int l, int y, const std::vector<float>* b_plane
   const Level& L = levels_[l];
   const size_t n = L.padded(), row = L.at(0, y);
   const int w = L.w;
-  const RowCouplings a(L, row);
-  const float* __restrict d = &L.diag[row];
-  for (int c = 0; c < NC; ++c) {
-    const float* __restrict e = &e_planes[c * n + row];
-    float* __restrict r = out[c];
-    a.neighbour_sum(e, r, w);
-    if (b_planes) {
-      const float* __restrict b = &(*b_planes)[c * n + row];
-      for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
-    } else {
-      for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // The finest level, its codes decoded in registers: the operations of the loops below in their
+  // order, as the compiler vectorises and contracts them (the same bits).
+  if (!L.code.empty()) {
+    const int s = L.stride;
+    for (int x = 0; x < w; x += 16) {
+      const __mmask16 in = w - x >= 16 ? 0xFFFF : __mmask16((1u << (w - x)) - 1);
+      const Coefficients16 k = finest_coefficients(L, row, x, in, false);
+      for (int c = 0; c < NC; ++c) {
+        const float* e = &e_planes[c * n + row + x];
+        const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
+        __m512 t = _mm512_mul_ps(k.w, load(e - 1));
+        t = _mm512_fmadd_ps(k.e, load(e + 1), t);
+        t = _mm512_fmadd_ps(k.s, load(e + s), t);
+        t = _mm512_fmadd_ps(k.n, load(e - s), t);
+        const __m512 r =
+            b_planes ? _mm512_add_ps(
+                           _mm512_fnmadd_ps(k.d, load(e), load(&(*b_planes)[c * n + row + x])), t)
+                     : _mm512_fnmadd_ps(k.d, load(e), t);
+        _mm512_mask_storeu_ps(out[c] + x, in, r);
+      }
     }
-    if (norms) {  // while the row is in cache
+  } else
+#endif
+  {
+    const RowOperator op = row_operator(L, row, false);
+    const float* __restrict d = op.d;
+    for (int c = 0; c < NC; ++c) {
+      const float* __restrict e = &e_planes[c * n + row];
+      float* __restrict r = out[c];
+      op.a.neighbour_sum(e, r, w);
+      if (b_planes) {
+        const float* __restrict b = &(*b_planes)[c * n + row];
+        for (int x = 0; x < w; ++x) r[x] += b[x] - d[x] * e[x];
+      } else {
+        for (int x = 0; x < w; ++x) r[x] -= d[x] * e[x];
+      }
+    }
+  }
+  if (norms)  // while the row is in cache
+    for (int c = 0; c < NC; ++c) {
+      const float* __restrict r = out[c];
       float sum = 0;
 #pragma omp simd reduction(+ : sum)
       for (int x = 0; x < w; ++x) sum += r[x] * r[x];
       norms[c] = sum;
     }
-  }
 }
 
 // out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded. Without
@@ -935,6 +1115,52 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   const Prolongation& P = prolong_[l];
   const size_t nc = C.padded();
   const int cs = C.stride;
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // Sixteen coarse points at a time: the fine rows' even and odd points gathered from 32 in
+  // registers, and the sum below term by term in its order (the compiler contracts it to the
+  // same chain of fused multiply-adds).
+  const int fw = levels_[l].w;  // fine rows are readable from x = -1 to fw
+  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+  const auto lanes = [](int count) {
+    return count >= 16  ? __mmask16(0xFFFF)
+           : count <= 0 ? __mmask16(0)
+                        : __mmask16((1u << count) - 1);
+  };
+  for (int I = 0; I < C.w; I += 16) {
+    const size_t kc = C.at(I, J);
+    const __mmask16 in = lanes(C.w - I);
+    const auto load = [&](const std::vector<float>& v, size_t k) {
+      return _mm512_maskz_loadu_ps(in, &v[k]);
+    };
+    const __m512 x0 = load(P.x0, kc), x1 = load(P.x1, kc - 1), y0 = load(P.y0, kc),
+                 y1 = load(P.y1, kc - cs), c00 = load(P.c00, kc), c10 = load(P.c10, kc - 1),
+                 c01 = load(P.c01, kc - cs), c11 = load(P.c11, kc - cs - 1);
+    const __mmask16 alive =
+        _mm_test_epi8_mask(_mm_maskz_loadu_epi8(in, &C.alive[kc]), _mm_set1_epi8(1));
+    const int x = 2 * I;
+    // Fine points x + 2i + offset, i = 0..15, of a row (offset -1, 0 or 1).
+    const auto fine = [&](const float* r, int offset, const __m512i& pick) {
+      const int o = x + offset - (offset == 1 ? 1 : 0);  // the first of the 32 loaded
+      const __m512 lo = _mm512_maskz_loadu_ps(lanes(fw + 1 - o), r + o);
+      const __m512 hi = _mm512_maskz_loadu_ps(lanes(fw + 1 - o - 16), r + o + 16);
+      return _mm512_permutex2var_ps(lo, pick, hi);
+    };
+    for (int c = 0; c < NC; ++c) {
+      const float *rn = north[c], *r0 = centre[c], *rs = south[c];
+      __m512 v = _mm512_fmadd_ps(x0, fine(r0, 1, odd), fine(r0, 0, even));
+      v = _mm512_fmadd_ps(x1, fine(r0, -1, even), v);
+      v = _mm512_fmadd_ps(y0, fine(rs, 0, even), v);
+      v = _mm512_fmadd_ps(y1, fine(rn, 0, even), v);
+      v = _mm512_fmadd_ps(c00, fine(rs, 1, odd), v);
+      v = _mm512_fmadd_ps(c10, fine(rs, -1, even), v);
+      v = _mm512_fmadd_ps(c01, fine(rn, 1, odd), v);
+      v = _mm512_fmadd_ps(c11, fine(rn, -1, even), v);
+      _mm512_mask_storeu_ps(&C.rhs[c * nc + kc], in, _mm512_maskz_mov_ps(alive, v));
+    }
+  }
+  return;
+#endif
   for (int I = 0; I < C.w; ++I) {
     const size_t kc = C.at(I, J);
     const int x = 2 * I;
@@ -1249,6 +1475,75 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
   const size_t np = p.pixel_count(), nf = F.padded();
   r_padded.resize(nf * NC);  // ghost points stay 0; every interior point is written below
   std::vector<double> rows(size_t(p.height) * NC * 2, 0.0);
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // Eight pixels at a time: every test of the loop below a mask, each term added only where the
+  // loop adds it, in its order (the same bits); the row sums then in pixel order.
+  const auto load = [](const T* q, __mmask8 m) {
+    if constexpr (std::is_same_v<T, float>)
+      return _mm512_cvtps_pd(_mm256_maskz_loadu_ps(m, q));
+    else
+      return _mm512_maskz_loadu_pd(m, q);
+  };
+  const auto widen = [](const float* q, __mmask8 m) {
+    return _mm512_cvtps_pd(_mm256_maskz_loadu_ps(m, q));
+  };
+  const auto bits = [](const std::uint8_t* q, __mmask8 m, std::uint8_t b) {
+    return __mmask8(_mm_test_epi8_mask(_mm_maskz_loadu_epi8(m, q), _mm_set1_epi8(char(b))));
+  };
+  const int W = p.width;
+  for_rows(p.height, p.width * NC, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      double* sums = &rows[size_t(y) * NC * 2];
+      for (int x = 0; x < W; x += 8) {
+        const __mmask8 in = W - x >= 8 ? 0xFF : __mmask8((1u << (W - x)) - 1);
+        const size_t i = p.index(x, y), k = F.at(x, y);
+        const __mmask8 free = __mmask8(in & ~bits(&fixed_[i], in, 1));
+        // East, west, south, north: the link is open (from a free pixel), the neighbour fixed.
+        const __mmask8 west_in = x == 0 ? __mmask8(in & 0xFE) : in;
+        const __mmask8 open[4] = {
+            __mmask8(free & bits(&p.links[i], in, kOpenEast)),
+            __mmask8(free & bits(&p.links[i] - 1, west_in, kOpenEast)),
+            __mmask8(free & bits(&p.links[i], in, kOpenSouth)),
+            y > 0 ? __mmask8(free & bits(&p.links[i] - W, in, kOpenSouth)) : __mmask8(0)};
+        const std::ptrdiff_t nb[4] = {1, -1, W, -W};
+        __mmask8 fixed_nb[4];
+        for (int q = 0; q < 4; ++q) fixed_nb[q] = bits(&fixed_[i] + nb[q], open[q], 1);
+        const __m512d w = widen(&p.anchor_weight[i], in);
+        const __mmask8 anchored = _mm512_mask_cmp_pd_mask(free, w, _mm512_setzero_pd(), _CMP_GT_OQ);
+        for (int c = 0; c < NC; ++c) {
+          const T* uc = &u[c * np + i];
+          const __m512d ui = load(uc, free);
+          __m512d b = _mm512_setzero_pd(), au = _mm512_setzero_pd();
+          if (!p.rhs.empty())
+            b = _mm512_xor_pd(widen(&p.rhs[c * np + i], free), _mm512_set1_pd(-0.0));
+          if (anchored) {
+            au = _mm512_mask3_fmadd_pd(ui, w, au, anchored);
+            b = _mm512_mask3_fmadd_pd(w, widen(&p.value[c * np + i], anchored), b, anchored);
+          }
+          for (int q = 0; q < 4; ++q) {
+            if (!open[q]) continue;
+            const __m512d un = load(uc + nb[q], open[q]);
+            au = _mm512_mask_add_pd(au, open[q], au, ui);
+            b = _mm512_mask_add_pd(b, __mmask8(open[q] & fixed_nb[q]), b, un);
+            au = _mm512_mask_sub_pd(au, __mmask8(open[q] & ~fixed_nb[q]), au, un);
+          }
+          const __m512d r = _mm512_maskz_sub_pd(free, b, au);
+          _mm256_mask_storeu_ps(&r_padded[c * nf + k], in, _mm512_cvtpd_ps(r));
+          alignas(64) double rs[8], bs[8];
+          _mm512_store_pd(rs, r);
+          _mm512_store_pd(bs, b);
+          double& r2 = sums[c * 2];
+          double& b2 = sums[c * 2 + 1];
+          for (int j = 0; j < 8; ++j)
+            if (free >> j & 1) {
+              r2 = std::fma(rs[j], rs[j], r2);
+              b2 = std::fma(bs[j], bs[j], b2);
+            }
+        }
+      }
+    }
+  });
+#else
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < p.width; ++x) {
@@ -1285,6 +1580,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
         }
       }
   });
+#endif
   std::array<double, NC> norms{};
   for (int y = 0; y < p.height; ++y)
     for (int c = 0; c < NC; ++c) {
@@ -1319,6 +1615,7 @@ float Multigrid<NC>::change_of_row(int y, std::vector<float>& before) const {
   for (int c = 0; c < NC; ++c) {
     const float* __restrict e = &L.e[c * n + L.at(0, y)];
     float* __restrict b = &before[c * n + L.at(0, y)];
+#pragma omp simd reduction(max : m)
     for (int x = 0; x < L.w; ++x) {
       m = std::max(m, std::abs(e[x] - b[x]));
       b[x] = e[x];

@@ -101,7 +101,7 @@ std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options = {},
                          const std::vector<float>* initial_guess = nullptr);
 
-// Frees the workspaces that solves keep between calls (about 85 MB at 1024², three channels):
+// Frees the workspaces that solves keep between calls (about 78 MB at 1024², three channels):
 // the next solve builds a new one. For the end of a batch, e.g. before `wisp render`'s previews.
 void release_solver_workspaces();
 

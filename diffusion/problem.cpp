@@ -1,6 +1,7 @@
 // Problem construction helpers (see problem.hpp).
 #include "diffusion/problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -49,30 +50,49 @@ void add_gradient_field(Problem& p, const std::vector<float>& wx, const std::vec
   }
 }
 
+// Connected components of the pixels by runs: a run is a piece of a row joined by open east links,
+// and runs joined by an open south link are merged (union-find). A pixel is reached when its
+// component holds a fixed or anchored pixel. Runs partition the pixels in raster order, so run r
+// covers the pixels from start[r] to start[r + 1].
 std::vector<std::uint8_t> reached_from_fixed(const Problem& p) {
   const int W = p.width, H = p.height;
-  std::vector<std::uint8_t> reached(p.pixel_count(), 0);
-  std::vector<int> stack;
-  for (size_t i = 0; i < p.pixel_count(); ++i)
-    if (p.fixed[i] || p.anchor_weight[i] > 0) {
-      reached[i] = 1;
-      stack.push_back(int(i));
-    }
-  while (!stack.empty()) {
-    const int i = stack.back();
-    stack.pop_back();
-    const int x = i % W, y = i / W;
-    const auto visit = [&](int j, bool open) {
-      if (open && !reached[j]) {
-        reached[j] = 1;
-        stack.push_back(j);
+  std::vector<int> parent, start;
+  std::vector<std::uint8_t> seeded;
+  const auto find = [&](int r) {
+    while (parent[r] != r) r = parent[r] = parent[parent[r]];
+    return r;
+  };
+  std::vector<int> above(W), here(W);  // the run of each pixel of the last row and this one
+  for (int y = 0; y < H; ++y) {
+    const size_t row = p.index(0, y);
+    int run = -1, joined_above = -1;
+    for (int x = 0; x < W; ++x) {
+      const size_t i = row + x;
+      if (x == 0 || !(p.links[i - 1] & kOpenEast)) {
+        run = int(parent.size());
+        parent.push_back(run);
+        start.push_back(int(i));
+        seeded.push_back(0);
+        joined_above = -1;
       }
-    };
-    visit(i + 1, x + 1 < W && (p.links[i] & kOpenEast));
-    visit(i - 1, x > 0 && (p.links[i - 1] & kOpenEast));
-    visit(i + W, y + 1 < H && (p.links[i] & kOpenSouth));
-    visit(i - W, y > 0 && (p.links[i - W] & kOpenSouth));
+      here[x] = run;
+      seeded[run] |= std::uint8_t(p.fixed[i] || p.anchor_weight[i] > 0);
+      if (y > 0 && (p.links[i - W] & kOpenSouth) && above[x] != joined_above) {
+        joined_above = above[x];
+        const int a = find(joined_above), b = find(run);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+    std::swap(above, here);
   }
+  const int runs = int(parent.size());
+  std::vector<std::uint8_t> component_seeded(runs, 0);
+  for (int r = 0; r < runs; ++r) component_seeded[find(r)] |= seeded[r];
+  std::vector<std::uint8_t> reached(p.pixel_count());
+  start.push_back(int(p.pixel_count()));
+  for (int r = 0; r < runs; ++r)
+    std::fill(reached.begin() + start[r], reached.begin() + start[r + 1],
+              component_seeded[find(r)]);
   return reached;
 }
 
