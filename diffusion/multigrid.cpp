@@ -1450,7 +1450,12 @@ void Multigrid<NC>::setup() {
   levels_.resize(count);
   prolong_.resize(count - 1);
   std::vector<std::uint8_t> changed = build_finest(fixed_, !reuse);
-  for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, reuse ? &changed : nullptr);
+  // Where most of the operator changed (a renderer's window moved over the image), rebuilding
+  // every coarse point is cheaper than finding which to rebuild, and gives the same bits.
+  const auto changed_points =
+      std::count_if(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
+  const bool incremental = reuse && 4 * size_t(changed_points) < changed.size();
+  for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, incremental ? &changed : nullptr);
   build_coarsest();
   // The cycles' arrays: every interior value is written before it is read, and the ghost points
   // stay 0, so arrays of the same layout are kept as they are.
