@@ -166,7 +166,8 @@ class Multigrid {
         fixed_(ws.fixed),
         previous_(ws.previous) {}
 
-  Solution run(const std::vector<float>* initial_guess);
+  // `buffer`, when given, is taken for the answer's planes (it may hold the initial guess).
+  Solution run(const std::vector<float>* initial_guess, std::vector<float>* buffer = nullptr);
   std::vector<double> factors(int cycles, unsigned seed);
 
  private:
@@ -1730,7 +1731,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
 }
 
 template <int NC>
-Solution Multigrid<NC>::run(const std::vector<float>* guess) {
+Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>* buffer) {
   const Problem& p = problem_;
   const auto t_setup = Clock::now();
   Solution out;
@@ -1767,6 +1768,13 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess) {
     });
   };
   std::vector<float> u32;
+  // The caller's buffer, with the guess in it when it is the guess: initial() reads each guess
+  // value before it writes the same place.
+  if (buffer) {
+    const bool is_guess = guess == buffer;
+    u32.swap(*buffer);
+    if (is_guess) guess = &u32;
+  }
   std::vector<double> u64;
   // The residual of the initial guess is the finest level's right-hand side.
   std::vector<float>& r = levels_[0].rhs;
@@ -1868,7 +1876,8 @@ WorkspacePool& workspace_pool() {
 
 template <int NC>
 Solution solve_in_workspace(const Problem& problem, const SolverOptions& options,
-                            const std::vector<float>* initial_guess) {
+                            const std::vector<float>* initial_guess,
+                            std::vector<float>* buffer = nullptr) {
   WorkspacePool& pool = workspace_pool<NC>();
   std::unique_ptr<Workspace> ws;
   {
@@ -1879,7 +1888,7 @@ Solution solve_in_workspace(const Problem& problem, const SolverOptions& options
     }
   }
   if (!ws) ws = std::make_unique<Workspace>();
-  Solution solution = Multigrid<NC>(problem, options, *ws).run(initial_guess);
+  Solution solution = Multigrid<NC>(problem, options, *ws).run(initial_guess, buffer);
   const std::lock_guard<std::mutex> lock(pool.mutex);
   pool.idle.push_back(std::move(ws));  // (not after an exception: that workspace is dropped)
   return solution;
@@ -1904,21 +1913,35 @@ void release_solver_workspaces() {
   release_pool<4>();
 }
 
-Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
-                         const std::vector<float>* initial_guess) {
+namespace {
+
+Solution solve_with(const Problem& problem, const SolverOptions& options,
+                    const std::vector<float>* initial_guess, std::vector<float>* buffer) {
   check_problem(problem);
   if (initial_guess && initial_guess->size() != problem.pixel_count() * problem.channels)
     throw std::invalid_argument("solver: initial guess has the wrong size");
   switch (problem.channels) {
     case 1:
-      return solve_in_workspace<1>(problem, options, initial_guess);
+      return solve_in_workspace<1>(problem, options, initial_guess, buffer);
     case 2:
-      return solve_in_workspace<2>(problem, options, initial_guess);
+      return solve_in_workspace<2>(problem, options, initial_guess, buffer);
     case 3:
-      return solve_in_workspace<3>(problem, options, initial_guess);
+      return solve_in_workspace<3>(problem, options, initial_guess, buffer);
     default:
-      return solve_in_workspace<4>(problem, options, initial_guess);
+      return solve_in_workspace<4>(problem, options, initial_guess, buffer);
   }
+}
+
+}  // namespace
+
+Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
+                         const std::vector<float>* initial_guess) {
+  return solve_with(problem, options, initial_guess, nullptr);
+}
+
+Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
+                         std::vector<float>&& initial_guess) {
+  return solve_with(problem, options, &initial_guess, &initial_guess);
 }
 
 }  // namespace wisp::diffusion

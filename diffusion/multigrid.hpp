@@ -100,6 +100,10 @@ std::vector<double> measure_vcycle_factors(const Problem& problem, int cycles,
 // channels planes of W*H; its values at fixed pixels are ignored.
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options = {},
                          const std::vector<float>* initial_guess = nullptr);
+// The same, the answer written over the initial guess's own buffer: no fresh planes to allocate
+// and fault in (a frame's warm start, which is not needed after the solve).
+Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
+                         std::vector<float>&& initial_guess);
 
 // Frees the workspaces that solves keep between calls (about 78 MB at 1024², three channels):
 // the next solve builds a new one. For the end of a batch, e.g. before `wisp render`'s previews.

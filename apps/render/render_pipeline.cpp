@@ -211,12 +211,12 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
     // The warm start holds the colours, then the previous blur map when there was one.
     const size_t n = size_t(W) * H;
     const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);
-    const std::vector<float> warm_colours =
-        warm ? window_planes(*warm_start, 3, W, H, win) : std::vector<float>();
     // No pixel near a curve (the hair is out of the picture): nothing to solve.
     diffusion::Solution s;
     if (win.pixel_count() > 0)
-      s = diffusion::solve_multigrid(r.problem, setup.solver, warm ? &warm_colours : nullptr);
+      s = warm ? diffusion::solve_multigrid(r.problem, setup.solver,
+                                            window_planes(*warm_start, 3, W, H, win))
+               : diffusion::solve_multigrid(r.problem, setup.solver);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     // The constraints are done with (the inspector shows them), before the images below.
