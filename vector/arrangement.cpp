@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
@@ -59,16 +60,39 @@ void check_wisp(const Wisp& w, int index) {
       throw std::invalid_argument(name + ": section is not finite");
 }
 
+// The resolver's per-face and per-edge arrays. build_arrangement keeps one set per thread and
+// lends it to each call: allocated anew, they were fresh pages from the system every frame.
+struct ResolverArrays {
+  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
+  // all faces instead of one each.
+  std::vector<Winding> cover_pool;
+  std::vector<std::pair<int, int>> cover_at;
+  std::vector<int> pool_order;   // the faces in the order of their covers in cover_pool
+  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
+  std::vector<char> hair;        // per face: covered and in view
+  std::vector<char> in_view;
+  std::vector<int> front;
+  std::vector<double> front_depth;
+  std::vector<char> visible;  // per entry of map.sources
+  // Scratch of propagate_cover, sample_faces and order_faces.
+  std::vector<char> scratch_seen, scratch_wanted;
+  std::vector<double> scratch_lines;
+  std::vector<std::pair<int, double>> scratch_crossings;
+  std::vector<int> scratch_xs_begin;
+  std::vector<double> scratch_xs;
+  std::vector<std::pair<double, int>> scratch_order;
+};
+
 // Everything decided on the planar map.
-struct Resolver {
+struct Resolver : ResolverArrays {
   const std::vector<Wisp>& wisps;
   const std::vector<OutlineSegment>& segments;
   const PlanarMap& map;
   const ArrangementOptions& options;
 
   Resolver(const std::vector<Wisp>& w, const std::vector<OutlineSegment>& s, const PlanarMap& m,
-           const ArrangementOptions& o)
-      : wisps(w), segments(s), map(m), options(o) {
+           const ArrangementOptions& o, ResolverArrays&& arrays)
+      : ResolverArrays(std::move(arrays)), wisps(w), segments(s), map(m), options(o) {
     cells.reserve(w.size());
     nearest.reserve(w.size());
     for (const Wisp& wisp : w) {
@@ -83,23 +107,9 @@ struct Resolver {
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
   std::vector<double> nearest;   // per wisp: no band depth of it is below this
-  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
-  // all faces instead of one each.
-  std::vector<Winding> cover_pool;
-  std::vector<std::pair<int, int>> cover_at;
-  std::vector<int> pool_order;  // the faces in the order of their covers in cover_pool
   CoverRange cover(int f) const {
     return {cover_pool.data() + cover_at[f].first, cover_pool.data() + cover_at[f].second};
   }
-  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
-  std::vector<char> hair;        // per face: covered and in view
-  std::vector<char> in_view;
-  std::vector<int> front;
-  std::vector<double> front_depth;
-  std::vector<char> visible;                              // per entry of map.sources
-  std::vector<double> scratch_lines;                      // of sample_faces
-  std::vector<std::pair<int, double>> scratch_crossings;  // of sample_faces
-  std::vector<std::pair<double, int>> scratch_order;      // of order_faces
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
@@ -130,7 +140,8 @@ struct Resolver {
     cover_pool.clear();
     cover_at.assign(map.faces.size(), {0, 0});
     Cover c;
-    std::vector<char> seen(map.faces.size(), 0);
+    std::vector<char>& seen = scratch_seen;
+    seen.assign(map.faces.size(), 0);
     std::vector<int>& queue = pool_order;
     queue.assign(1, map.unbounded_face);
     seen[map.unbounded_face] = 1;
@@ -205,7 +216,7 @@ struct Resolver {
           found.emplace_back(3 * f + k, a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
     }
-    Buckets<double> xs = bucket<double>(3 * faces, [&](const auto& put) {
+    bucket_into(scratch_xs_begin, scratch_xs, 3 * faces, [&](const auto& put) {
       for (const auto& [key, x] : found) put(key, x);
     });
     for (int f = 0; f < faces; ++f) {
@@ -215,8 +226,8 @@ struct Resolver {
       Vector2d best = 0.5 * (map.vertices[map.source(h0)] + map.vertices[map.halfedges[h0].target]);
       double best_width = 0;
       for (int k = 0; k < 3; ++k) {
-        double *first = xs.items.data() + xs.begin[3 * f + k],
-               *last = xs.items.data() + xs.begin[3 * f + k + 1];
+        double *first = scratch_xs.data() + scratch_xs_begin[3 * f + k],
+               *last = scratch_xs.data() + scratch_xs_begin[3 * f + k + 1];
         std::sort(first, last);
         for (double* x = first; x + 1 < last; x += 2)
           if (x[1] - x[0] > best_width)
@@ -234,7 +245,8 @@ struct Resolver {
     hair.assign(faces, 0);
     front.assign(faces, -1);
     front_depth.assign(faces, 0);
-    std::vector<char> wanted(faces, 0);
+    std::vector<char>& wanted = scratch_wanted;
+    wanted.assign(faces, 0);
     for (int f = 0; f < faces; ++f)
       wanted[f] = f != map.unbounded_face && (!cover(f).empty() || options.keep_faces);
     sample_faces(wanted);
@@ -474,7 +486,9 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   WispArrangement out;
   const auto t0 = Clock::now();
   const double cpu0 = diffusion::thread_cpu_ms();
-  std::vector<OutlineSegment> segments;
+  thread_local std::vector<OutlineSegment> kept_segments;
+  std::vector<OutlineSegment> segments = std::move(kept_segments);
+  segments.clear();
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
     ++out.stats.wisps;
@@ -539,13 +553,21 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     out.stats.wisps -= out.stats.hidden_wisps;
     out.stats.cull_ms = ms_since(tc);
   }
-  const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);
+  // Our arrangement goes into a map whose arrays are kept per thread (lent to this call: a call
+  // further up this thread's stack, if any, holds its own), like the resolver's.
+  thread_local PlanarMap kept_map;
+  thread_local ResolverArrays kept_arrays;
+  PlanarMap map = std::move(kept_map);
+  if (options.arrange)
+    map = options.arrange(segments);
+  else
+    arrange_segments(segments, map);
   out.stats.sweep_ms = ms_since(t0);
   const double cpu1 = diffusion::thread_cpu_ms();
   out.stats.sweep_cpu_ms = cpu1 - cpu0;
 
   const auto t1 = Clock::now();
-  Resolver r(wisps, segments, map, options);
+  Resolver r(wisps, segments, map, options, std::move(kept_arrays));
   r.propagate_cover();
   r.order_faces();
   r.decide_visibility();
@@ -592,6 +614,9 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   for (char h : r.hair) out.stats.covered_faces += h;
   if (!options.keep_faces) crossing = r.intersection_flags();
   for (char c : crossing) out.stats.intersections += c;
+  kept_arrays = std::move(static_cast<ResolverArrays&>(r));
+  kept_map = std::move(map);
+  kept_segments = std::move(segments);
   return out;
 }
 
