@@ -73,9 +73,12 @@ struct ResolverArrays {
   std::vector<char> in_view;
   std::vector<int> front;
   std::vector<double> front_depth;
-  std::vector<char> visible;  // per entry of map.sources
+  std::vector<char> visible;     // per entry of map.sources
+  std::vector<int> source_wisp;  // per entry of map.sources: its segment's wisp (dense; a segment
+                                 // is 80 bytes, and the sources reach them in no order)
   // Scratch of propagate_cover, sample_faces and order_faces.
   std::vector<char> scratch_seen, scratch_wanted;
+  std::vector<int> scratch_face_begin, scratch_face_halfedges;
   std::vector<double> scratch_lines;
   std::vector<std::pair<int, double>> scratch_crossings;
   std::vector<int> scratch_xs_begin;
@@ -103,6 +106,8 @@ struct Resolver : ResolverArrays {
         lo = std::min(lo, sec.depth), size = std::max(size, std::abs(sec.depth));
       nearest.push_back(lo - 1e-12 * size);
     }
+    source_wisp.resize(m.sources.size());
+    for (size_t i = 0; i < m.sources.size(); ++i) source_wisp[i] = s[m.sources[i].segment].wisp;
   }
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
@@ -135,8 +140,15 @@ struct Resolver : ResolverArrays {
   }
 
   // Winding numbers: zero in the unbounded face; crossing a segment from its left (CGAL's
-  // orientation) to its right lowers its wisp's winding by one.
+  // orientation) to its right lowers its wisp's winding by one. Breadth-first over the faces,
+  // each face's halfedges grouped in two linear passes (walking its cycles by `next` missed the
+  // cache at nearly every step); a winding number does not depend on the path it is counted
+  // along, so neither does the order.
   void propagate_cover() {
+    bucket_into(scratch_face_begin, scratch_face_halfedges, int(map.faces.size()),
+                [&](const auto& put) {
+                  for (int h = 0; h < 2 * map.edge_count(); ++h) put(map.halfedges[h].face, h);
+                });
     cover_pool.clear();
     cover_at.assign(map.faces.size(), {0, 0});
     Cover c;
@@ -147,29 +159,23 @@ struct Resolver : ResolverArrays {
     seen[map.unbounded_face] = 1;
     for (size_t q = 0; q < queue.size(); ++q) {
       const int f = queue[q];
-      for_each_ccb(f, [&](int h0) {
-        int h = h0;
-        do {
-          const int g = map.halfedges[h ^ 1].face;
-          if (!seen[g]) {
-            seen[g] = 1;
-            c.assign(cover_pool.begin() + cover_at[f].first,
-                     cover_pool.begin() + cover_at[f].second);
-            const int e = h / 2;
-            for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-              const PlanarMap::Source& s = map.sources[i];
-              const int w = segments[s.segment].wisp;  // occluders count like wisps here
-              if (w < 0) continue;
-              const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
-              add_winding(c, w, along_h ? -1 : +1);
-            }
-            cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
-            cover_pool.insert(cover_pool.end(), c.begin(), c.end());
-            queue.push_back(g);
-          }
-          h = map.halfedges[h].next;
-        } while (h != h0);
-      });
+      for (int k = scratch_face_begin[f]; k < scratch_face_begin[f + 1]; ++k) {
+        const int h = scratch_face_halfedges[k], g = map.halfedges[h ^ 1].face;
+        if (seen[g]) continue;
+        seen[g] = 1;
+        c.assign(cover_pool.begin() + cover_at[f].first, cover_pool.begin() + cover_at[f].second);
+        const int e = h / 2;
+        for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+          const PlanarMap::Source& s = map.sources[i];
+          const int w = source_wisp[i];  // occluders count like wisps here
+          if (w < 0) continue;
+          const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
+          add_winding(c, w, along_h ? -1 : +1);
+        }
+        cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
+        cover_pool.insert(cover_pool.end(), c.begin(), c.end());
+        queue.push_back(g);
+      }
     }
     for (int f = 0; f < int(map.faces.size()); ++f)
       if (!seen[f]) queue.push_back(f);  // not reached: an empty cover
@@ -358,7 +364,7 @@ struct Resolver : ResolverArrays {
 
   bool occluder_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       if (w >= n_wisps() && w < base_id()) return true;
     }
     return false;
@@ -366,7 +372,7 @@ struct Resolver : ResolverArrays {
 
   bool frame_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
-      if (segments[map.sources[i].segment].wisp < 0) return true;
+      if (source_wisp[i] < 0) return true;
     return false;
   }
 
@@ -374,7 +380,7 @@ struct Resolver : ResolverArrays {
   int visible_wisp(int e) const {
     int best = -1;
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       if (visible[i] && is_wisp(w) && (best < 0 || w < best)) best = w;
     }
     return best;
@@ -383,10 +389,10 @@ struct Resolver : ResolverArrays {
   // Whether every source wisp of edge e is one of edge g's (sources are few: no allocation).
   bool wisps_within(int e, int g) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       bool found = false;
       for (int j = map.source_begin[g]; j < map.source_begin[g + 1] && !found; ++j)
-        found = segments[map.sources[j].segment].wisp == w;
+        found = source_wisp[j] == w;
       if (!found) return false;
     }
     return true;
