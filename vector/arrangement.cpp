@@ -7,9 +7,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
+#include "vector/buckets.hpp"
 #include "vector/hidden_wisps.hpp"
 #include "vector/ink.hpp"
 #include "vector/planar_map.hpp"
@@ -58,16 +60,42 @@ void check_wisp(const Wisp& w, int index) {
       throw std::invalid_argument(name + ": section is not finite");
 }
 
+// The resolver's per-face and per-edge arrays. build_arrangement keeps one set per thread and
+// lends it to each call: allocated anew, they were fresh pages from the system every frame.
+struct ResolverArrays {
+  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
+  // all faces instead of one each.
+  std::vector<Winding> cover_pool;
+  std::vector<std::pair<int, int>> cover_at;
+  std::vector<int> pool_order;   // the faces in the order of their covers in cover_pool
+  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
+  std::vector<char> hair;        // per face: covered and in view
+  std::vector<char> in_view;
+  std::vector<int> front;
+  std::vector<double> front_depth;
+  std::vector<char> visible;     // per entry of map.sources
+  std::vector<int> source_wisp;  // per entry of map.sources: its segment's wisp (dense; a segment
+                                 // is 80 bytes, and the sources reach them in no order)
+  // Scratch of propagate_cover, sample_faces and order_faces.
+  std::vector<char> scratch_seen, scratch_wanted;
+  std::vector<int> scratch_face_begin, scratch_face_halfedges;
+  std::vector<double> scratch_lines;
+  std::vector<std::pair<int, double>> scratch_crossings;
+  std::vector<int> scratch_xs_begin;
+  std::vector<double> scratch_xs;
+  std::vector<std::pair<double, int>> scratch_order;
+};
+
 // Everything decided on the planar map.
-struct Resolver {
+struct Resolver : ResolverArrays {
   const std::vector<Wisp>& wisps;
   const std::vector<OutlineSegment>& segments;
   const PlanarMap& map;
   const ArrangementOptions& options;
 
   Resolver(const std::vector<Wisp>& w, const std::vector<OutlineSegment>& s, const PlanarMap& m,
-           const ArrangementOptions& o)
-      : wisps(w), segments(s), map(m), options(o) {
+           const ArrangementOptions& o, ResolverArrays&& arrays)
+      : ResolverArrays(std::move(arrays)), wisps(w), segments(s), map(m), options(o) {
     cells.reserve(w.size());
     nearest.reserve(w.size());
     for (const Wisp& wisp : w) {
@@ -78,27 +106,15 @@ struct Resolver {
         lo = std::min(lo, sec.depth), size = std::max(size, std::abs(sec.depth));
       nearest.push_back(lo - 1e-12 * size);
     }
+    source_wisp.resize(m.sources.size());
+    for (size_t i = 0; i < m.sources.size(); ++i) source_wisp[i] = s[m.sources[i].segment].wisp;
   }
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
   std::vector<double> nearest;   // per wisp: no band depth of it is below this
-  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
-  // all faces instead of one each.
-  std::vector<Winding> cover_pool;
-  std::vector<std::pair<int, int>> cover_at;
   CoverRange cover(int f) const {
     return {cover_pool.data() + cover_at[f].first, cover_pool.data() + cover_at[f].second};
   }
-  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
-  std::vector<char> hair;        // per face: covered and in view
-  std::vector<char> in_view;
-  std::vector<int> front;
-  std::vector<double> front_depth;
-  std::vector<char> visible;  // per entry of map.sources
-  // Buffers of interior_point, kept across faces to spare an allocation per face.
-  mutable std::vector<std::pair<Vector2d, Vector2d>> scratch_edges;
-  mutable std::vector<double> scratch_xs;
-  std::vector<std::pair<double, int>> scratch_order;  // of order_faces
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
@@ -124,72 +140,108 @@ struct Resolver {
   }
 
   // Winding numbers: zero in the unbounded face; crossing a segment from its left (CGAL's
-  // orientation) to its right lowers its wisp's winding by one.
+  // orientation) to its right lowers its wisp's winding by one. Breadth-first over the faces,
+  // each face's halfedges grouped in two linear passes (walking its cycles by `next` missed the
+  // cache at nearly every step); a winding number does not depend on the path it is counted
+  // along, so neither does the order.
   void propagate_cover() {
+    bucket_into(scratch_face_begin, scratch_face_halfedges, int(map.faces.size()),
+                [&](const auto& put) {
+                  for (int h = 0; h < 2 * map.edge_count(); ++h) put(map.halfedges[h].face, h);
+                });
     cover_pool.clear();
     cover_at.assign(map.faces.size(), {0, 0});
     Cover c;
-    std::vector<char> seen(map.faces.size(), 0);
-    std::vector<int> queue = {map.unbounded_face};
+    std::vector<char>& seen = scratch_seen;
+    seen.assign(map.faces.size(), 0);
+    std::vector<int>& queue = pool_order;
+    queue.assign(1, map.unbounded_face);
     seen[map.unbounded_face] = 1;
     for (size_t q = 0; q < queue.size(); ++q) {
       const int f = queue[q];
-      for_each_ccb(f, [&](int h0) {
-        int h = h0;
-        do {
-          const int g = map.halfedges[h ^ 1].face;
-          if (!seen[g]) {
-            seen[g] = 1;
-            c.assign(cover_pool.begin() + cover_at[f].first,
-                     cover_pool.begin() + cover_at[f].second);
-            const int e = h / 2;
-            for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-              const PlanarMap::Source& s = map.sources[i];
-              const int w = segments[s.segment].wisp;  // occluders count like wisps here
-              if (w < 0) continue;
-              const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
-              add_winding(c, w, along_h ? -1 : +1);
-            }
-            cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
-            cover_pool.insert(cover_pool.end(), c.begin(), c.end());
-            queue.push_back(g);
-          }
-          h = map.halfedges[h].next;
-        } while (h != h0);
-      });
+      for (int k = scratch_face_begin[f]; k < scratch_face_begin[f + 1]; ++k) {
+        const int h = scratch_face_halfedges[k], g = map.halfedges[h ^ 1].face;
+        if (seen[g]) continue;
+        seen[g] = 1;
+        c.assign(cover_pool.begin() + cover_at[f].first, cover_pool.begin() + cover_at[f].second);
+        const int e = h / 2;
+        for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
+          const PlanarMap::Source& s = map.sources[i];
+          const int w = source_wisp[i];  // occluders count like wisps here
+          if (w < 0) continue;
+          const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
+          add_winding(c, w, along_h ? -1 : +1);
+        }
+        cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
+        cover_pool.insert(cover_pool.end(), c.begin(), c.end());
+        queue.push_back(g);
+      }
     }
+    for (int f = 0; f < int(map.faces.size()); ++f)
+      if (!seen[f]) queue.push_back(f);  // not reached: an empty cover
   }
 
-  // An interior point: the middle of the widest span cut from the face by one of three
-  // horizontal lines (even-odd over all its boundaries, so holes are avoided).
-  Vector2d interior_point(int f) const {
-    std::vector<std::pair<Vector2d, Vector2d>>& edges = scratch_edges;
-    edges.clear();
-    double y0 = INFINITY, y1 = -INFINITY;
-    for_each_ccb(f, [&](int h0) {
-      int h = h0;
-      do {
-        const Vector2d &a = map.vertices[map.source(h)], &b = map.vertices[map.halfedges[h].target];
-        edges.emplace_back(a, b);
-        y0 = std::min(y0, a.y()), y1 = std::max(y1, a.y());
-        h = map.halfedges[h].next;
-      } while (h != h0);
-    });
-    Vector2d best = 0.5 * (edges[0].first + edges[0].second);
-    double best_width = 0;
-    std::vector<double>& xs = scratch_xs;
-    for (double frac : {0.5, 0.25, 0.75}) {
-      const double y = y0 + frac * (y1 - y0);
-      xs.clear();
-      for (const auto& [a, b] : edges)
-        if ((a.y() > y) != (b.y() > y))
-          xs.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
-      std::sort(xs.begin(), xs.end());
-      for (size_t i = 0; i + 1 < xs.size(); i += 2)
-        if (xs[i + 1] - xs[i] > best_width)
-          best_width = xs[i + 1] - xs[i], best = {0.5 * (xs[i] + xs[i + 1]), y};
+  // Per face, an interior point: the middle of the widest span cut from the face by one of three
+  // horizontal lines (even-odd over all its boundaries, so holes are avoided). The y-ranges and
+  // the lines' crossings are gathered in linear passes over the edges instead of walking each
+  // face's cycles (a cache miss at nearly every step of the walk); each halfedge's crossing is
+  // computed from its own source and target as before and the xs are sorted per line, so the
+  // points do not depend on the order the crossings are found in. Also whether each is in view.
+  void sample_faces(const std::vector<char>& wanted) {
+    const int faces = int(map.faces.size()), edges = map.edge_count();
+    constexpr double fracs[3] = {0.5, 0.25, 0.75};  // tried in this order: ties go to the first
+    std::vector<double>& lines = scratch_lines;     // per face: y0, y1, then the three lines' y
+    lines.assign(5 * size_t(faces), 0);
+    for (int f = 0; f < faces; ++f) lines[5 * f] = INFINITY, lines[5 * f + 1] = -INFINITY;
+    for (int e = 0; e < edges; ++e) {
+      const Vector2d &a = map.vertices[map.halfedges[2 * e + 1].target],
+                     &b = map.vertices[map.halfedges[2 * e].target];
+      for (const auto& [f, y] : {std::pair{map.halfedges[2 * e].face, a.y()},
+                                 std::pair{map.halfedges[2 * e + 1].face, b.y()}}) {
+        double* r = &lines[5 * size_t(f)];
+        r[0] = std::min(r[0], y), r[1] = std::max(r[1], y);
+      }
     }
-    return best;
+    for (int f = 0; f < faces; ++f) {
+      double* r = &lines[5 * size_t(f)];
+      if (wanted[f])
+        for (int k = 0; k < 3; ++k) r[2 + k] = r[0] + fracs[k] * (r[1] - r[0]);
+    }
+    // The crossings, found once, then grouped by (face, line).
+    std::vector<std::pair<int, double>>& found = scratch_crossings;
+    found.clear();
+    for (int h = 0; h < 2 * edges; ++h) {
+      const int f = map.halfedges[h].face;
+      if (!wanted[f]) continue;
+      const Vector2d &a = map.vertices[map.halfedges[h ^ 1].target],
+                     &b = map.vertices[map.halfedges[h].target];
+      const double* r = &lines[5 * size_t(f)];
+      for (int k = 0; k < 3; ++k) {
+        const double y = r[2 + k];
+        if ((a.y() > y) != (b.y() > y))
+          found.emplace_back(3 * f + k, a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+      }
+    }
+    bucket_into(scratch_xs_begin, scratch_xs, 3 * faces, [&](const auto& put) {
+      for (const auto& [key, x] : found) put(key, x);
+    });
+    for (int f = 0; f < faces; ++f) {
+      if (!wanted[f]) continue;
+      const PlanarMap::Face& face = map.faces[f];
+      const int h0 = face.outer >= 0 ? face.outer : map.holes[face.holes_begin];
+      Vector2d best = 0.5 * (map.vertices[map.source(h0)] + map.vertices[map.halfedges[h0].target]);
+      double best_width = 0;
+      for (int k = 0; k < 3; ++k) {
+        double *first = scratch_xs.data() + scratch_xs_begin[3 * f + k],
+               *last = scratch_xs.data() + scratch_xs_begin[3 * f + k + 1];
+        std::sort(first, last);
+        for (double* x = first; x + 1 < last; x += 2)
+          if (x[1] - x[0] > best_width)
+            best_width = x[1] - x[0], best = {0.5 * (x[0] + x[1]), lines[5 * size_t(f) + 2 + k]};
+      }
+      sample[f] = best;
+      in_view[f] = !options.clip_to_view || options.view.contains(best);
+    }
   }
 
   void order_faces() {
@@ -199,12 +251,13 @@ struct Resolver {
     hair.assign(faces, 0);
     front.assign(faces, -1);
     front_depth.assign(faces, 0);
-    for (int f = 0; f < faces; ++f) {
-      if (f == map.unbounded_face) continue;
-      if (cover(f).empty() && !options.keep_faces) continue;
-      sample[f] = interior_point(f);
-      in_view[f] = !options.clip_to_view || options.view.contains(sample[f]);
-      if (cover(f).empty()) continue;
+    std::vector<char>& wanted = scratch_wanted;
+    wanted.assign(faces, 0);
+    for (int f = 0; f < faces; ++f)
+      wanted[f] = f != map.unbounded_face && (!cover(f).empty() || options.keep_faces);
+    sample_faces(wanted);
+    for (int f : pool_order) {  // the covers in memory order: read from cache, not memory
+      if (!wanted[f] || cover(f).empty()) continue;
       // Front-most by depth at the sample point; ties go to the lower wisp index. An occluder
       // in front of every wisp makes the face its own: not hair, unless the hair base covers
       // the face and is nearer than that occluder (it lies on the head, behind every wisp).
@@ -311,7 +364,7 @@ struct Resolver {
 
   bool occluder_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       if (w >= n_wisps() && w < base_id()) return true;
     }
     return false;
@@ -319,7 +372,7 @@ struct Resolver {
 
   bool frame_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
-      if (segments[map.sources[i].segment].wisp < 0) return true;
+      if (source_wisp[i] < 0) return true;
     return false;
   }
 
@@ -327,7 +380,7 @@ struct Resolver {
   int visible_wisp(int e) const {
     int best = -1;
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       if (visible[i] && is_wisp(w) && (best < 0 || w < best)) best = w;
     }
     return best;
@@ -336,10 +389,10 @@ struct Resolver {
   // Whether every source wisp of edge e is one of edge g's (sources are few: no allocation).
   bool wisps_within(int e, int g) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
-      const int w = segments[map.sources[i].segment].wisp;
+      const int w = source_wisp[i];
       bool found = false;
       for (int j = map.source_begin[g]; j < map.source_begin[g + 1] && !found; ++j)
-        found = segments[map.sources[j].segment].wisp == w;
+        found = source_wisp[j] == w;
       if (!found) return false;
     }
     return true;
@@ -439,7 +492,9 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   WispArrangement out;
   const auto t0 = Clock::now();
   const double cpu0 = diffusion::thread_cpu_ms();
-  std::vector<OutlineSegment> segments;
+  thread_local std::vector<OutlineSegment> kept_segments;
+  std::vector<OutlineSegment> segments = std::move(kept_segments);
+  segments.clear();
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
     ++out.stats.wisps;
@@ -504,13 +559,21 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     out.stats.wisps -= out.stats.hidden_wisps;
     out.stats.cull_ms = ms_since(tc);
   }
-  const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);
+  // Our arrangement goes into a map whose arrays are kept per thread (lent to this call: a call
+  // further up this thread's stack, if any, holds its own), like the resolver's.
+  thread_local PlanarMap kept_map;
+  thread_local ResolverArrays kept_arrays;
+  PlanarMap map = std::move(kept_map);
+  if (options.arrange)
+    map = options.arrange(segments);
+  else
+    arrange_segments(segments, map);
   out.stats.sweep_ms = ms_since(t0);
   const double cpu1 = diffusion::thread_cpu_ms();
   out.stats.sweep_cpu_ms = cpu1 - cpu0;
 
   const auto t1 = Clock::now();
-  Resolver r(wisps, segments, map, options);
+  Resolver r(wisps, segments, map, options, std::move(kept_arrays));
   r.propagate_cover();
   r.order_faces();
   r.decide_visibility();
@@ -557,6 +620,9 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   for (char h : r.hair) out.stats.covered_faces += h;
   if (!options.keep_faces) crossing = r.intersection_flags();
   for (char c : crossing) out.stats.intersections += c;
+  kept_arrays = std::move(static_cast<ResolverArrays&>(r));
+  kept_map = std::move(map);
+  kept_segments = std::move(segments);
   return out;
 }
 

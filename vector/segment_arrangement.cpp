@@ -94,8 +94,11 @@ bool t_equal(const Split& p, const Split& q) {
 // Union-find; the smaller index stays the root (so a class of points with a segment end in it is
 // represented by the end: ends are numbered before crossings).
 struct UnionFind {
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::vector<int> parent;
+  UnionFind(std::vector<int>& p, int n) : parent(p) {
+    parent.resize(n);
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  std::vector<int>& parent;
   int find(int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
@@ -141,8 +144,7 @@ struct Grid {
   }
 };
 
-Grid build_grid(const std::vector<Segment>& segs) {
-  Grid g;
+void build_grid(const std::vector<Segment>& segs, Grid& g) {
   Int xmin = segs[0].a.x, xmax = xmin, ymin = segs[0].a.y, ymax = ymin;
   for (const Segment& s : segs)
     for (IPoint p : {s.a, s.b}) {
@@ -154,11 +156,9 @@ Grid build_grid(const std::vector<Segment>& segs) {
   g.cell = std::max({std::sqrt(w * h / double(segs.size())), std::max(w, h) / 2048, 1.0});
   g.x0 = double(xmin), g.y0 = double(ymin);
   g.nx = int(w / g.cell) + 1, g.ny = int(h / g.cell) + 1;
-  Buckets<int> cells = bucket<int>(g.nx * g.ny, [&](const auto& put) {
+  bucket_into(g.begin, g.items, g.nx * g.ny, [&](const auto& put) {
     for (int i = 0; i < int(segs.size()); ++i) g.for_each_cell(segs[i], [&](int c) { put(c, i); });
   });
-  g.begin = std::move(cells.begin), g.items = std::move(cells.items);
-  return g;
 }
 
 // Splits the segments at every point where they meet: ends lying inside another segment, crossings,
@@ -215,10 +215,50 @@ struct Intersector {
   }
 };
 
+// An end of a segment in the xy sort of the ends.
+struct End {
+  IPoint p;
+  int e;
+};
+
+struct EdgeSource {
+  int edge, input;
+  bool along;
+};
+
+// The arrays of a call, kept per thread with their capacity: allocated anew, a frame's
+// arrangement took some 10 MB of fresh pages from the system every call (page faults, zeroing).
+// A call runs no code but its own, so no second call on the thread can start inside it.
+struct Workspace {
+  std::vector<Segment> segs;
+  std::vector<int> end_id;
+  std::vector<IPoint> end_point;
+  std::vector<Eigen::Vector2d> end_input;
+  std::vector<End> ends;
+  std::vector<Split> found, splits, crossing_at;
+  Grid grid;
+  std::vector<int> tested, split_begin, classes, components, vertex_of;
+  std::vector<int> edge_from, edge_to, edge_segment, piece_edge;
+  std::vector<EdgeSource> edge_sources;
+  std::unordered_map<std::uint64_t, int> shared;
+  std::vector<IPoint> edge_dir, vertex_point;
+  std::vector<int> out_begin, out, out_pos, cycle, cycle_first, lowest, outside_of;
+  std::vector<int> component_roots, face_of_cycle, around, seen, face_of_component, outside_cycle;
+  std::vector<int> chain, holes_begin;
+};
+
 }  // namespace
 
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   PlanarMap map;
+  arrange_segments(input, map);
+  return map;
+}
+
+void arrange_segments(const std::vector<OutlineSegment>& input, PlanarMap& map) {
+  thread_local Workspace work;
+  map.vertices.clear(), map.halfedges.clear(), map.source_begin.clear(), map.sources.clear();
+  map.faces.clear(), map.holes.clear();
   // Snap: the largest power of two at which every coordinate rounds to at most 2^29.
   double largest = 0;
   for (int i = 0; i < int(input.size()); ++i) {
@@ -234,8 +274,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     return IPoint{Int(std::llround(std::ldexp(p.x(), shift))),
                   Int(std::llround(std::ldexp(p.y(), shift)))};
   };
-  std::vector<Segment> segs;
-  segs.reserve(input.size());
+  std::vector<Segment>& segs = work.segs;
+  segs.clear();
   for (int i = 0; i < int(input.size()); ++i) {
     Segment s{snap(input[i].a), snap(input[i].b), i};
     if (!(s.a == s.b)) segs.push_back(s);
@@ -244,22 +284,21 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     map.faces.resize(1);
     map.unbounded_face = 0;
     map.source_begin = {0};
-    return map;
+    return;
   }
   const int n = int(segs.size());
 
   // Point ids of the ends: equal points one id, numbered in xy order.
-  std::vector<int> end_id(2 * n);
-  std::vector<IPoint> end_point;           // per end id
-  std::vector<Eigen::Vector2d> end_input;  // per end id: the first input point snapped to it
+  std::vector<int>& end_id = work.end_id;
+  end_id.assign(2 * size_t(n), 0);
+  // Per end id: its point, and the first input point snapped to it.
+  std::vector<IPoint>& end_point = work.end_point;
+  std::vector<Eigen::Vector2d>& end_input = work.end_input;
+  end_point.clear(), end_input.clear();
   {
     // An outline's consecutive segments share their meeting point: each such end is sorted once.
-    struct End {
-      IPoint p;
-      int e;
-    };
-    std::vector<End> ends;
-    ends.reserve(size_t(n) + 16);
+    std::vector<End>& ends = work.ends;
+    ends.clear();
     for (int i = 0; i < n; ++i) {
       if (i == 0 || !(segs[i].a == segs[i - 1].b)) ends.push_back({segs[i].a, 2 * i});
       ends.push_back({segs[i].b, 2 * i + 1});
@@ -281,17 +320,20 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   const int n_ends = int(end_point.size());
 
   // Every point where segments meet, as splits of the segments.
-  std::vector<Split> splits;
-  splits.reserve(4 * size_t(n));
+  std::vector<Split>& found = work.found;  // in the order found
+  found.clear();
   for (int i = 0; i < n; ++i) {
-    splits.push_back({i, 0, 1, end_id[2 * i]});
-    splits.push_back({i, 1, 1, end_id[2 * i + 1]});
+    found.push_back({i, 0, 1, end_id[2 * i]});
+    found.push_back({i, 1, 1, end_id[2 * i + 1]});
   }
-  std::vector<Split> crossing_at;  // per crossing id (from n_ends on)
-  const Grid grid = build_grid(segs);
+  std::vector<Split>& crossing_at = work.crossing_at;  // per crossing id (from n_ends on)
+  crossing_at.clear();
+  Grid& grid = work.grid;
+  build_grid(segs, grid);
   {
-    Intersector meet{segs, end_id, splits, crossing_at, n_ends};
-    std::vector<int> tested(n, -1);  // the last i tested against j: each pair once
+    Intersector meet{segs, end_id, found, crossing_at, n_ends};
+    std::vector<int>& tested = work.tested;
+    tested.assign(n, -1);  // the last i tested against j: each pair once
     for (int i = 0; i < n; ++i)
       grid.for_each_cell(segs[i], [&](int c) {
         for (int k = grid.begin[c]; k < grid.begin[c + 1]; ++k) {
@@ -306,12 +348,12 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Splits grouped by segment (stable, so in the order found), then by parameter; equal
   // parameters on a segment are one point.
-  Buckets<Split> by_segment = bucket<Split>(n, [&](const auto& put) {
-    for (const Split& s : splits) put(s.segment, s);
+  const std::vector<int>& split_begin = work.split_begin;
+  bucket_into(work.split_begin, work.splits, n, [&](const auto& put) {
+    for (const Split& s : found) put(s.segment, s);
   });
-  const std::vector<int> split_begin = std::move(by_segment.begin);
-  splits = std::move(by_segment.items);
-  UnionFind classes(n_points);
+  std::vector<Split>& splits = work.splits;
+  UnionFind classes(work.classes, n_points);
   for (int i = 0; i < n; ++i) {
     const auto first = splits.begin() + split_begin[i], last = splits.begin() + split_begin[i + 1];
     std::sort(first, last, [](const Split& p, const Split& q) {
@@ -321,7 +363,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
       if (t_equal(*(s - 1), *s)) classes.unite((s - 1)->point, s->point);
   }
   // Vertices: the classes' roots, ends first (in xy order), then crossings as found.
-  std::vector<int> vertex_of(n_points, -1);
+  std::vector<int>& vertex_of = work.vertex_of;
+  vertex_of.assign(n_points, -1);
   int n_vertices = 0;
   for (int p = 0; p < n_points; ++p)
     if (classes.find(p) == p) vertex_of[p] = n_vertices++;
@@ -330,14 +373,16 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Edges: the pieces between consecutive distinct points of each segment. Pieces of
   // overlapping segments are the same straight edge when their end vertices are.
-  struct EdgeSource {
-    int edge, input;
-    bool along;
-  };
-  std::vector<int> edge_from, edge_to, edge_segment;  // halfedge 2e runs from -> to along segment
-  std::vector<EdgeSource> edge_sources;
-  std::vector<int> piece_edge(splits.size(), -1);  // per split: the edge of the piece after it
-  std::unordered_map<std::uint64_t, int> shared;
+  // Halfedge 2e runs from -> to along segment.
+  std::vector<int>&edge_from = work.edge_from, &edge_to = work.edge_to,
+  &edge_segment = work.edge_segment;
+  edge_from.clear(), edge_to.clear(), edge_segment.clear();
+  std::vector<EdgeSource>& edge_sources = work.edge_sources;
+  edge_sources.clear();
+  std::vector<int>& piece_edge = work.piece_edge;  // per split: the edge of the piece after it
+  piece_edge.assign(splits.size(), -1);
+  std::unordered_map<std::uint64_t, int>& shared = work.shared;
+  shared.clear();
   for (int i = 0; i < n; ++i) {
     int run = split_begin[i];  // first split of the current point
     for (int k = split_begin[i] + 1; k < split_begin[i + 1]; ++k) {
@@ -363,19 +408,21 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     }
   }
   const int n_edges = int(edge_from.size());
-  std::vector<IPoint> edge_dir(n_edges);  // of halfedge 2e: its first source's direction
+  std::vector<IPoint>& edge_dir = work.edge_dir;  // of halfedge 2e: its first source's direction
+  edge_dir.resize(n_edges);
   for (int e = 0; e < n_edges; ++e) edge_dir[e] = segs[edge_segment[e]].dir();
   auto direction = [&](int h) { return h % 2 ? -edge_dir[h / 2] : edge_dir[h / 2]; };
   auto target = [&](int h) { return h % 2 ? edge_from[h / 2] : edge_to[h / 2]; };
 
   // Around each vertex, its outgoing halfedges counter-clockwise; a halfedge's next is the
   // outgoing one clockwise after its twin (the face on its left continues there).
-  Buckets<int> outgoing = bucket<int>(n_vertices, [&](const auto& put) {
+  const std::vector<int>& out_begin = work.out_begin;
+  std::vector<int>& out = work.out;
+  bucket_into(work.out_begin, out, n_vertices, [&](const auto& put) {
     for (int h = 0; h < 2 * n_edges; ++h) put(target(h ^ 1), h);
   });
-  const std::vector<int>& out_begin = outgoing.begin;
-  std::vector<int>& out = outgoing.items;
-  std::vector<int> out_pos(2 * n_edges);
+  std::vector<int>& out_pos = work.out_pos;
+  out_pos.resize(2 * size_t(n_edges));
   for (int v = 0; v < n_vertices; ++v) {
     if (out_begin[v + 1] - out_begin[v] > 2)  // two are in order either way round
       std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1],
@@ -390,28 +437,33 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   }
 
   // Cycles of `next`, and the connected components of the vertices.
-  std::vector<int> cycle(2 * n_edges, -1), cycle_first;
+  std::vector<int>&cycle = work.cycle, &cycle_first = work.cycle_first;
+  cycle.assign(2 * size_t(n_edges), -1), cycle_first.clear();
   for (int h0 = 0; h0 < 2 * n_edges; ++h0) {
     if (cycle[h0] >= 0) continue;
     const int c = int(cycle_first.size());
     cycle_first.push_back(h0);
     for (int h = h0; cycle[h] < 0; h = map.halfedges[h].next) cycle[h] = c;
   }
-  UnionFind components(n_vertices);
+  UnionFind components(work.components, n_vertices);
   for (int e = 0; e < n_edges; ++e) components.unite(edge_from[e], edge_to[e]);
   // A component's xy-smallest point is a segment's end (every segment's smallest point is), so
   // its lowest vertex among the ends; the cycle leaving it most counter-clockwise bounds the
   // component from outside (the gap towards -x is on its left).
-  std::vector<int> lowest(n_vertices, -1);  // per component root
-  std::vector<IPoint> vertex_point(n_end_vertices);
+  std::vector<int>& lowest = work.lowest;  // per component root
+  lowest.assign(n_vertices, -1);
+  std::vector<IPoint>& vertex_point = work.vertex_point;
+  vertex_point.resize(n_end_vertices);
   for (int p = 0; p < n_ends; ++p) vertex_point[vertex_of[p]] = end_point[p];
   for (int v = 0; v < n_end_vertices; ++v) {
     int& l = lowest[components.find(v)];
     if (l < 0 || lex_less(vertex_point[v], vertex_point[l])) l = v;
   }
   // Per cycle: the component it bounds from outside, or -1.
-  std::vector<int> outside_of(cycle_first.size(), -1);
-  std::vector<int> component_roots;
+  std::vector<int>& outside_of = work.outside_of;
+  outside_of.assign(cycle_first.size(), -1);
+  std::vector<int>& component_roots = work.component_roots;
+  component_roots.clear();
   for (int v = 0; v < n_vertices; ++v) {
     if (lowest[v] < 0) continue;
     const int w = lowest[v];
@@ -423,7 +475,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   }
 
   // Faces: the unbounded one, then one per cycle that is not a component's outside.
-  std::vector<int> face_of_cycle(cycle_first.size(), -1);
+  std::vector<int>& face_of_cycle = work.face_of_cycle;
+  face_of_cycle.assign(cycle_first.size(), -1);
   map.unbounded_face = 0;
   map.faces.resize(1);
   for (int c = 0; c < int(cycle_first.size()); ++c)
@@ -436,8 +489,10 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   // segment met, at an inner point of one of its edges or at a vertex, has the face on its side.
   // `around` is the halfedge whose left face holds the component, -1 for the unbounded face.
   const int n_components = int(component_roots.size());
-  std::vector<int> around(n_components, -1);
-  std::vector<int> seen(n, -1);
+  std::vector<int>& around = work.around;
+  around.assign(n_components, -1);
+  std::vector<int>& seen = work.seen;
+  seen.assign(n, -1);
   for (int m = 0; m < n_components; ++m) {
     const IPoint o = vertex_point[lowest[component_roots[m]]];
     // Best hit so far: x = num / den (den > 0) on segment `hit`, or at vertex `hit_vertex`.
@@ -505,9 +560,11 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     around[m] = last;
   }
   // A component inside a face bounded by another component's outside lies in that one's face.
-  std::vector<int> face_of_component(n_components, -2);
+  std::vector<int>& face_of_component = work.face_of_component;
+  face_of_component.assign(n_components, -2);
   auto face_of = [&](int m) {
-    std::vector<int> chain;
+    std::vector<int>& chain = work.chain;
+    chain.clear();
     while (face_of_component[m] == -2) {
       if (int(chain.size()) > n_components)
         throw std::logic_error("arrangement: components nested in a cycle");
@@ -532,22 +589,22 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   for (int h = 0; h < 2 * n_edges; ++h) map.halfedges[h].face = face_of_cycle[cycle[h]];
   // Holes, grouped by face in component order.
   {
-    std::vector<int> outside_cycle(n_components);
+    std::vector<int>& outside_cycle = work.outside_cycle;
+    outside_cycle.resize(n_components);
     for (int c = 0; c < int(cycle_first.size()); ++c)
       if (outside_of[c] >= 0) outside_cycle[outside_of[c]] = c;
-    Buckets<int> holes = bucket<int>(int(map.faces.size()), [&](const auto& put) {
+    std::vector<int>& holes_begin = work.holes_begin;
+    bucket_into(holes_begin, map.holes, int(map.faces.size()), [&](const auto& put) {
       for (int m = 0; m < n_components; ++m) put(face_of(m), cycle_first[outside_cycle[m]]);
     });
     for (size_t f = 0; f < map.faces.size(); ++f)
-      map.faces[f].holes_begin = holes.begin[f], map.faces[f].holes_end = holes.begin[f + 1];
-    map.holes = std::move(holes.items);
+      map.faces[f].holes_begin = holes_begin[f], map.faces[f].holes_end = holes_begin[f + 1];
   }
 
   // Sources per edge, in input order (they were found segment by segment).
-  Buckets<PlanarMap::Source> sources = bucket<PlanarMap::Source>(n_edges, [&](const auto& put) {
-    for (const EdgeSource& s : edge_sources) put(s.edge, {s.input, s.along});
+  bucket_into(map.source_begin, map.sources, n_edges, [&](const auto& put) {
+    for (const EdgeSource& s : edge_sources) put(s.edge, PlanarMap::Source{s.input, s.along});
   });
-  map.source_begin = std::move(sources.begin), map.sources = std::move(sources.items);
 
   // Coordinates: a segment's end as given (so that the resolver's parameters along a segment
   // are its own at its ends, and consecutive pieces abut exactly), a crossing rounded once from
@@ -564,7 +621,6 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     map.vertices[vertex_of[x.point]] = {double(std::ldexp((long double)nx / den, -shift)),
                                         double(std::ldexp((long double)ny / den, -shift))};
   }
-  return map;
 }
 
 }  // namespace wisp::vector

@@ -207,3 +207,64 @@ TEST_CASE("arrange_segments names a non-finite segment", "[vector][arrangement]"
   CHECK(empty.faces.size() == 1);
   CHECK(empty.edge_count() == 0);
 }
+
+// arrange_segments and build_arrangement keep their arrays per thread across calls: a call after
+// a larger one, and after one that threw, gives what a first call gives.
+TEST_CASE("kept arrays leak nothing from one arrangement into the next", "[vector][arrangement]") {
+  vector::WispStyle style;
+  const auto small = vector::build_wisps(test::random_frame(6, 5), style);
+  const auto large = vector::build_wisps(test::random_frame(40, 3), style);
+  auto outline = [](const std::vector<vector::Wisp>& wisps) {
+    std::vector<OutlineSegment> segments;
+    for (int w = 0; w < int(wisps.size()); ++w) {
+      const auto poly = vector::outline_polygon(wisps[w]);
+      for (size_t i = 0; i < poly.size(); ++i)
+        segments.push_back({poly[i].p, poly[(i + 1) % poly.size()].p, w});
+    }
+    segments.push_back(side(0, 50, 0, 60));  // overlapping collinear pieces
+    segments.push_back(side(0, 55, 0, 70));
+    return segments;
+  };
+  const PlanarMap first = vector::arrange_segments(outline(small));
+  PlanarMap reused;
+  vector::arrange_segments(outline(large), reused);
+  CHECK_THROWS(vector::arrange_segments({side(0, 0, 1, 0), side(1, 0, NAN, 1)}, reused));
+  vector::arrange_segments(outline(small), reused);
+  CHECK(reused.vertices == first.vertices);
+  REQUIRE(reused.halfedges.size() == first.halfedges.size());
+  for (size_t h = 0; h < first.halfedges.size(); ++h) {
+    CHECK(reused.halfedges[h].target == first.halfedges[h].target);
+    CHECK(reused.halfedges[h].next == first.halfedges[h].next);
+    CHECK(reused.halfedges[h].face == first.halfedges[h].face);
+  }
+  CHECK(reused.source_begin == first.source_begin);
+  REQUIRE(reused.sources.size() == first.sources.size());
+  for (size_t i = 0; i < first.sources.size(); ++i) {
+    CHECK(reused.sources[i].segment == first.sources[i].segment);
+    CHECK(reused.sources[i].along == first.sources[i].along);
+  }
+  REQUIRE(reused.faces.size() == first.faces.size());
+  for (size_t f = 0; f < first.faces.size(); ++f) {
+    CHECK(reused.faces[f].outer == first.faces[f].outer);
+    CHECK(reused.faces[f].holes_begin == first.faces[f].holes_begin);
+    CHECK(reused.faces[f].holes_end == first.faces[f].holes_end);
+  }
+  CHECK(reused.holes == first.holes);
+
+  vector::ArrangementOptions o;
+  o.view = vector::image_rect(512, 512);
+  o.keep_faces = true;
+  o.front_regions = true;
+  const vector::WispArrangement a = vector::build_arrangement(small, o);
+  vector::build_arrangement(large, o);
+  const vector::WispArrangement b = vector::build_arrangement(small, o);
+  CHECK(b.visible == a.visible);
+  CHECK(b.stats.faces == a.stats.faces);
+  CHECK(b.stats.covered_faces == a.stats.covered_faces);
+  REQUIRE(b.view.faces.size() == a.view.faces.size());
+  for (size_t f = 0; f < a.view.faces.size(); ++f) {
+    CHECK(b.view.faces[f].sample == a.view.faces[f].sample);
+    CHECK(b.view.faces[f].front == a.view.faces[f].front);
+    CHECK(b.view.faces[f].cover == a.view.faces[f].cover);
+  }
+}
