@@ -60,8 +60,7 @@ void check_wisp(const Wisp& w, int index) {
       throw std::invalid_argument(name + ": section is not finite");
 }
 
-// The resolver's per-face and per-edge arrays. build_arrangement keeps one set per thread and
-// lends it to each call: allocated anew, they were fresh pages from the system every frame.
+// The resolver's per-face and per-edge arrays, and the scratch of its passes.
 struct ResolverArrays {
   // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
   // all faces instead of one each.
@@ -94,8 +93,8 @@ struct Resolver : ResolverArrays {
   const ArrangementOptions& options;
 
   Resolver(const std::vector<Wisp>& w, const std::vector<OutlineSegment>& s, const PlanarMap& m,
-           const ArrangementOptions& o, ResolverArrays&& arrays)
-      : ResolverArrays(std::move(arrays)), wisps(w), segments(s), map(m), options(o) {
+           const ArrangementOptions& o)
+      : wisps(w), segments(s), map(m), options(o) {
     cells.reserve(w.size());
     nearest.reserve(w.size());
     for (const Wisp& wisp : w) {
@@ -492,9 +491,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   WispArrangement out;
   const auto t0 = Clock::now();
   const double cpu0 = diffusion::thread_cpu_ms();
-  thread_local std::vector<OutlineSegment> kept_segments;
-  std::vector<OutlineSegment> segments = std::move(kept_segments);
-  segments.clear();
+  std::vector<OutlineSegment> segments;
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
     ++out.stats.wisps;
@@ -559,21 +556,13 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     out.stats.wisps -= out.stats.hidden_wisps;
     out.stats.cull_ms = ms_since(tc);
   }
-  // Our arrangement goes into a map whose arrays are kept per thread (lent to this call: a call
-  // further up this thread's stack, if any, holds its own), like the resolver's.
-  thread_local PlanarMap kept_map;
-  thread_local ResolverArrays kept_arrays;
-  PlanarMap map = std::move(kept_map);
-  if (options.arrange)
-    map = options.arrange(segments);
-  else
-    arrange_segments(segments, map);
+  const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);
   out.stats.sweep_ms = ms_since(t0);
   const double cpu1 = diffusion::thread_cpu_ms();
   out.stats.sweep_cpu_ms = cpu1 - cpu0;
 
   const auto t1 = Clock::now();
-  Resolver r(wisps, segments, map, options, std::move(kept_arrays));
+  Resolver r(wisps, segments, map, options);
   r.propagate_cover();
   r.order_faces();
   r.decide_visibility();
@@ -620,9 +609,6 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   for (char h : r.hair) out.stats.covered_faces += h;
   if (!options.keep_faces) crossing = r.intersection_flags();
   for (char c : crossing) out.stats.intersections += c;
-  kept_arrays = std::move(static_cast<ResolverArrays&>(r));
-  kept_map = std::move(map);
-  kept_segments = std::move(segments);
   return out;
 }
 

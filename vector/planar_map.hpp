@@ -59,8 +59,6 @@ struct PlanarMap {
 // predicates throughout. Zero-length segments (after snapping) are skipped. Deterministic:
 // indices depend only on the input. Throws std::invalid_argument on a non-finite coordinate.
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& segments);
-// The same into `map`, whose arrays keep their capacity (build_arrangement keeps one per thread).
-void arrange_segments(const std::vector<OutlineSegment>& segments, PlanarMap& map);
 // CGAL's, the reference: arrange_segments_cgal in vector/arrangement.hpp.
 
 }  // namespace wisp::vector

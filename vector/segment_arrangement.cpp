@@ -226,9 +226,7 @@ struct EdgeSource {
   bool along;
 };
 
-// The arrays of a call, kept per thread with their capacity: allocated anew, a frame's
-// arrangement took some 10 MB of fresh pages from the system every call (page faults, zeroing).
-// A call runs no code but its own, so no second call on the thread can start inside it.
+// The arrays of a call.
 struct Workspace {
   std::vector<Segment> segs;
   std::vector<int> end_id;
@@ -251,14 +249,7 @@ struct Workspace {
 
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   PlanarMap map;
-  arrange_segments(input, map);
-  return map;
-}
-
-void arrange_segments(const std::vector<OutlineSegment>& input, PlanarMap& map) {
-  thread_local Workspace work;
-  map.vertices.clear(), map.halfedges.clear(), map.source_begin.clear(), map.sources.clear();
-  map.faces.clear(), map.holes.clear();
+  Workspace work;
   // Snap: the largest power of two at which every coordinate rounds to at most 2^29.
   double largest = 0;
   for (int i = 0; i < int(input.size()); ++i) {
@@ -284,7 +275,7 @@ void arrange_segments(const std::vector<OutlineSegment>& input, PlanarMap& map) 
     map.faces.resize(1);
     map.unbounded_face = 0;
     map.source_begin = {0};
-    return;
+    return map;
   }
   const int n = int(segs.size());
 
@@ -621,6 +612,7 @@ void arrange_segments(const std::vector<OutlineSegment>& input, PlanarMap& map) 
     map.vertices[vertex_of[x.point]] = {double(std::ldexp((long double)nx / den, -shift)),
                                         double(std::ldexp((long double)ny / den, -shift))};
   }
+  return map;
 }
 
 }  // namespace wisp::vector
