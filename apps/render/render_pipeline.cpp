@@ -195,9 +195,9 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
   if (!r.curves.empty()) {
     // Only the pixels near the curves are solved: the hair is shown through its mask, and the
     // anti-aliasing takes a pixel's colours from inside the mask only, so the solution is never
-    // seen farther than a pixel from a visible curve. The margin leaves room to spare; window
-    // corners on a 32-pixel lattice keep the size from frame to frame while the hair moves, so
-    // the solver's setup stays incremental.
+    // seen farther than a pixel from a visible curve. The margin leaves room to spare; corners
+    // on a 32-pixel lattice keep the window for a frame or a few while the hair sways, which
+    // keeps the solver's setup incremental there.
     r.window = setup.whole_image_solve
                    ? diffusion::PixelWindow{0, 0, W, H}
                    : diffusion::curves_window(r.curves, W, H, kWindowMargin, kWindowAlign);
