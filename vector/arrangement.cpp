@@ -7,7 +7,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
@@ -60,33 +59,8 @@ void check_wisp(const Wisp& w, int index) {
       throw std::invalid_argument(name + ": section is not finite");
 }
 
-// The resolver's per-face and per-edge arrays, and the scratch of its passes.
-struct ResolverArrays {
-  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
-  // all faces instead of one each.
-  std::vector<Winding> cover_pool;
-  std::vector<std::pair<int, int>> cover_at;
-  std::vector<int> pool_order;   // the faces in the order of their covers in cover_pool
-  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
-  std::vector<char> hair;        // per face: covered and in view
-  std::vector<char> in_view;
-  std::vector<int> front;
-  std::vector<double> front_depth;
-  std::vector<char> visible;     // per entry of map.sources
-  std::vector<int> source_wisp;  // per entry of map.sources: its segment's wisp (dense; a segment
-                                 // is 80 bytes, and the sources reach them in no order)
-  // Scratch of propagate_cover, sample_faces and order_faces.
-  std::vector<char> scratch_seen, scratch_wanted;
-  std::vector<int> scratch_face_begin, scratch_face_halfedges;
-  std::vector<double> scratch_lines;
-  std::vector<std::pair<int, double>> scratch_crossings;
-  std::vector<int> scratch_xs_begin;
-  std::vector<double> scratch_xs;
-  std::vector<std::pair<double, int>> scratch_order;
-};
-
 // Everything decided on the planar map.
-struct Resolver : ResolverArrays {
+struct Resolver {
   const std::vector<Wisp>& wisps;
   const std::vector<OutlineSegment>& segments;
   const PlanarMap& map;
@@ -111,9 +85,23 @@ struct Resolver : ResolverArrays {
 
   std::vector<BandCells> cells;  // per wisp, for depth lookups
   std::vector<double> nearest;   // per wisp: no band depth of it is below this
+  // Per face its cover: cover_pool[cover_at[f].first .. cover_at[f].second), one allocation for
+  // all faces instead of one each.
+  std::vector<Winding> cover_pool;
+  std::vector<std::pair<int, int>> cover_at;
+  std::vector<int> pool_order;  // the faces in the order of their covers in cover_pool
   CoverRange cover(int f) const {
     return {cover_pool.data() + cover_at[f].first, cover_pool.data() + cover_at[f].second};
   }
+  std::vector<Vector2d> sample;  // per face, for covered faces (all bounded ones with keep_faces)
+  std::vector<char> hair;        // per face: covered and in view
+  std::vector<char> in_view;
+  std::vector<int> front;
+  std::vector<double> front_depth;
+  std::vector<char> visible;     // per entry of map.sources
+  std::vector<int> source_wisp;  // per entry of map.sources: its segment's wisp (dense; a segment
+                                 // is 80 bytes, and the sources reach them in no order)
+  std::vector<std::pair<double, int>> scratch_order;  // of order_faces, kept across faces
 
   int n_wisps() const { return int(wisps.size()); }
   bool is_wisp(int id) const { return id >= 0 && id < n_wisps(); }
@@ -144,22 +132,20 @@ struct Resolver : ResolverArrays {
   // cache at nearly every step); a winding number does not depend on the path it is counted
   // along, so neither does the order.
   void propagate_cover() {
-    bucket_into(scratch_face_begin, scratch_face_halfedges, int(map.faces.size()),
-                [&](const auto& put) {
-                  for (int h = 0; h < 2 * map.edge_count(); ++h) put(map.halfedges[h].face, h);
-                });
+    const Buckets<int> by_face = bucket<int>(int(map.faces.size()), [&](const auto& put) {
+      for (int h = 0; h < 2 * map.edge_count(); ++h) put(map.halfedges[h].face, h);
+    });
     cover_pool.clear();
     cover_at.assign(map.faces.size(), {0, 0});
     Cover c;
-    std::vector<char>& seen = scratch_seen;
-    seen.assign(map.faces.size(), 0);
+    std::vector<char> seen(map.faces.size(), 0);
     std::vector<int>& queue = pool_order;
     queue.assign(1, map.unbounded_face);
     seen[map.unbounded_face] = 1;
     for (size_t q = 0; q < queue.size(); ++q) {
       const int f = queue[q];
-      for (int k = scratch_face_begin[f]; k < scratch_face_begin[f + 1]; ++k) {
-        const int h = scratch_face_halfedges[k], g = map.halfedges[h ^ 1].face;
+      for (int k = by_face.begin[f]; k < by_face.begin[f + 1]; ++k) {
+        const int h = by_face.items[k], g = map.halfedges[h ^ 1].face;
         if (seen[g]) continue;
         seen[g] = 1;
         c.assign(cover_pool.begin() + cover_at[f].first, cover_pool.begin() + cover_at[f].second);
@@ -188,9 +174,8 @@ struct Resolver : ResolverArrays {
   // points do not depend on the order the crossings are found in. Also whether each is in view.
   void sample_faces(const std::vector<char>& wanted) {
     const int faces = int(map.faces.size()), edges = map.edge_count();
-    constexpr double fracs[3] = {0.5, 0.25, 0.75};  // tried in this order: ties go to the first
-    std::vector<double>& lines = scratch_lines;     // per face: y0, y1, then the three lines' y
-    lines.assign(5 * size_t(faces), 0);
+    constexpr double fracs[3] = {0.5, 0.25, 0.75};    // tried in this order: ties go to the first
+    std::vector<double> lines(5 * size_t(faces), 0);  // per face: y0, y1, then the lines' y
     for (int f = 0; f < faces; ++f) lines[5 * f] = INFINITY, lines[5 * f + 1] = -INFINITY;
     for (int e = 0; e < edges; ++e) {
       const Vector2d &a = map.vertices[map.halfedges[2 * e + 1].target],
@@ -207,8 +192,7 @@ struct Resolver : ResolverArrays {
         for (int k = 0; k < 3; ++k) r[2 + k] = r[0] + fracs[k] * (r[1] - r[0]);
     }
     // The crossings, found once, then grouped by (face, line).
-    std::vector<std::pair<int, double>>& found = scratch_crossings;
-    found.clear();
+    std::vector<std::pair<int, double>> found;
     for (int h = 0; h < 2 * edges; ++h) {
       const int f = map.halfedges[h].face;
       if (!wanted[f]) continue;
@@ -221,7 +205,7 @@ struct Resolver : ResolverArrays {
           found.emplace_back(3 * f + k, a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
     }
-    bucket_into(scratch_xs_begin, scratch_xs, 3 * faces, [&](const auto& put) {
+    Buckets<double> xs = bucket<double>(3 * faces, [&](const auto& put) {
       for (const auto& [key, x] : found) put(key, x);
     });
     for (int f = 0; f < faces; ++f) {
@@ -231,8 +215,8 @@ struct Resolver : ResolverArrays {
       Vector2d best = 0.5 * (map.vertices[map.source(h0)] + map.vertices[map.halfedges[h0].target]);
       double best_width = 0;
       for (int k = 0; k < 3; ++k) {
-        double *first = scratch_xs.data() + scratch_xs_begin[3 * f + k],
-               *last = scratch_xs.data() + scratch_xs_begin[3 * f + k + 1];
+        double *first = xs.items.data() + xs.begin[3 * f + k],
+               *last = xs.items.data() + xs.begin[3 * f + k + 1];
         std::sort(first, last);
         for (double* x = first; x + 1 < last; x += 2)
           if (x[1] - x[0] > best_width)
@@ -250,8 +234,7 @@ struct Resolver : ResolverArrays {
     hair.assign(faces, 0);
     front.assign(faces, -1);
     front_depth.assign(faces, 0);
-    std::vector<char>& wanted = scratch_wanted;
-    wanted.assign(faces, 0);
+    std::vector<char> wanted(faces, 0);
     for (int f = 0; f < faces; ++f)
       wanted[f] = f != map.unbounded_face && (!cover(f).empty() || options.keep_faces);
     sample_faces(wanted);

@@ -15,23 +15,16 @@ struct Buckets {
 };
 
 // `each(put)` calls put(key, item) for every item, key in [0, keys), the same ones in the same
-// order each time: it runs twice, to count and to fill. Into `begin` and `items`, whose capacity
-// is kept (a caller that keeps them across calls takes no fresh pages from the system).
-template <typename T, typename Each>
-void bucket_into(std::vector<int>& begin, std::vector<T>& items, int keys, const Each& each) {
-  begin.assign(std::size_t(keys) + 1, 0);
-  each([&](int key, const T&) { ++begin[std::size_t(key) + 1]; });
-  for (int k = 0; k < keys; ++k) begin[k + 1] += begin[k];
-  items.resize(std::size_t(begin[keys]));
-  // begin[k + 1] is the fill position of key k, so that it ends at key k + 1's start.
-  for (int k = keys; k > 0; --k) begin[k] = begin[k - 1];
-  each([&](int key, const T& item) { items[std::size_t(begin[key + 1]++)] = item; });
-}
-
+// order each time: it runs twice, to count and to fill.
 template <typename T, typename Each>
 Buckets<T> bucket(int keys, const Each& each) {
   Buckets<T> b;
-  bucket_into(b.begin, b.items, keys, each);
+  b.begin.assign(std::size_t(keys) + 1, 0);
+  each([&](int key, const T&) { ++b.begin[std::size_t(key) + 1]; });
+  for (int k = 0; k < keys; ++k) b.begin[k + 1] += b.begin[k];
+  b.items.resize(std::size_t(b.begin[keys]));
+  std::vector<int> fill(b.begin.begin(), b.begin.end() - 1);
+  each([&](int key, const T& item) { b.items[std::size_t(fill[key]++)] = item; });
   return b;
 }
 

@@ -94,11 +94,8 @@ bool t_equal(const Split& p, const Split& q) {
 // Union-find; the smaller index stays the root (so a class of points with a segment end in it is
 // represented by the end: ends are numbered before crossings).
 struct UnionFind {
-  UnionFind(std::vector<int>& p, int n) : parent(p) {
-    parent.resize(n);
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  std::vector<int>& parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::vector<int> parent;
   int find(int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
@@ -144,7 +141,8 @@ struct Grid {
   }
 };
 
-void build_grid(const std::vector<Segment>& segs, Grid& g) {
+Grid build_grid(const std::vector<Segment>& segs) {
+  Grid g;
   Int xmin = segs[0].a.x, xmax = xmin, ymin = segs[0].a.y, ymax = ymin;
   for (const Segment& s : segs)
     for (IPoint p : {s.a, s.b}) {
@@ -156,9 +154,11 @@ void build_grid(const std::vector<Segment>& segs, Grid& g) {
   g.cell = std::max({std::sqrt(w * h / double(segs.size())), std::max(w, h) / 2048, 1.0});
   g.x0 = double(xmin), g.y0 = double(ymin);
   g.nx = int(w / g.cell) + 1, g.ny = int(h / g.cell) + 1;
-  bucket_into(g.begin, g.items, g.nx * g.ny, [&](const auto& put) {
+  Buckets<int> cells = bucket<int>(g.nx * g.ny, [&](const auto& put) {
     for (int i = 0; i < int(segs.size()); ++i) g.for_each_cell(segs[i], [&](int c) { put(c, i); });
   });
+  g.begin = std::move(cells.begin), g.items = std::move(cells.items);
+  return g;
 }
 
 // Splits the segments at every point where they meet: ends lying inside another segment, crossings,
@@ -215,41 +215,10 @@ struct Intersector {
   }
 };
 
-// An end of a segment in the xy sort of the ends.
-struct End {
-  IPoint p;
-  int e;
-};
-
-struct EdgeSource {
-  int edge, input;
-  bool along;
-};
-
-// The arrays of a call.
-struct Workspace {
-  std::vector<Segment> segs;
-  std::vector<int> end_id;
-  std::vector<IPoint> end_point;
-  std::vector<Eigen::Vector2d> end_input;
-  std::vector<End> ends;
-  std::vector<Split> found, splits, crossing_at;
-  Grid grid;
-  std::vector<int> tested, split_begin, classes, components, vertex_of;
-  std::vector<int> edge_from, edge_to, edge_segment, piece_edge;
-  std::vector<EdgeSource> edge_sources;
-  std::unordered_map<std::uint64_t, int> shared;
-  std::vector<IPoint> edge_dir, vertex_point;
-  std::vector<int> out_begin, out, out_pos, cycle, cycle_first, lowest, outside_of;
-  std::vector<int> component_roots, face_of_cycle, around, seen, face_of_component, outside_cycle;
-  std::vector<int> chain, holes_begin;
-};
-
 }  // namespace
 
 PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   PlanarMap map;
-  Workspace work;
   // Snap: the largest power of two at which every coordinate rounds to at most 2^29.
   double largest = 0;
   for (int i = 0; i < int(input.size()); ++i) {
@@ -265,8 +234,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     return IPoint{Int(std::llround(std::ldexp(p.x(), shift))),
                   Int(std::llround(std::ldexp(p.y(), shift)))};
   };
-  std::vector<Segment>& segs = work.segs;
-  segs.clear();
+  std::vector<Segment> segs;
+  segs.reserve(input.size());
   for (int i = 0; i < int(input.size()); ++i) {
     Segment s{snap(input[i].a), snap(input[i].b), i};
     if (!(s.a == s.b)) segs.push_back(s);
@@ -280,16 +249,17 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   const int n = int(segs.size());
 
   // Point ids of the ends: equal points one id, numbered in xy order.
-  std::vector<int>& end_id = work.end_id;
-  end_id.assign(2 * size_t(n), 0);
-  // Per end id: its point, and the first input point snapped to it.
-  std::vector<IPoint>& end_point = work.end_point;
-  std::vector<Eigen::Vector2d>& end_input = work.end_input;
-  end_point.clear(), end_input.clear();
+  std::vector<int> end_id(2 * n);
+  std::vector<IPoint> end_point;           // per end id
+  std::vector<Eigen::Vector2d> end_input;  // per end id: the first input point snapped to it
   {
     // An outline's consecutive segments share their meeting point: each such end is sorted once.
-    std::vector<End>& ends = work.ends;
-    ends.clear();
+    struct End {
+      IPoint p;
+      int e;
+    };
+    std::vector<End> ends;
+    ends.reserve(size_t(n) + 16);
     for (int i = 0; i < n; ++i) {
       if (i == 0 || !(segs[i].a == segs[i - 1].b)) ends.push_back({segs[i].a, 2 * i});
       ends.push_back({segs[i].b, 2 * i + 1});
@@ -311,20 +281,17 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   const int n_ends = int(end_point.size());
 
   // Every point where segments meet, as splits of the segments.
-  std::vector<Split>& found = work.found;  // in the order found
-  found.clear();
+  std::vector<Split> splits;
+  splits.reserve(4 * size_t(n));
   for (int i = 0; i < n; ++i) {
-    found.push_back({i, 0, 1, end_id[2 * i]});
-    found.push_back({i, 1, 1, end_id[2 * i + 1]});
+    splits.push_back({i, 0, 1, end_id[2 * i]});
+    splits.push_back({i, 1, 1, end_id[2 * i + 1]});
   }
-  std::vector<Split>& crossing_at = work.crossing_at;  // per crossing id (from n_ends on)
-  crossing_at.clear();
-  Grid& grid = work.grid;
-  build_grid(segs, grid);
+  std::vector<Split> crossing_at;  // per crossing id (from n_ends on)
+  const Grid grid = build_grid(segs);
   {
-    Intersector meet{segs, end_id, found, crossing_at, n_ends};
-    std::vector<int>& tested = work.tested;
-    tested.assign(n, -1);  // the last i tested against j: each pair once
+    Intersector meet{segs, end_id, splits, crossing_at, n_ends};
+    std::vector<int> tested(n, -1);  // the last i tested against j: each pair once
     for (int i = 0; i < n; ++i)
       grid.for_each_cell(segs[i], [&](int c) {
         for (int k = grid.begin[c]; k < grid.begin[c + 1]; ++k) {
@@ -339,12 +306,12 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Splits grouped by segment (stable, so in the order found), then by parameter; equal
   // parameters on a segment are one point.
-  const std::vector<int>& split_begin = work.split_begin;
-  bucket_into(work.split_begin, work.splits, n, [&](const auto& put) {
-    for (const Split& s : found) put(s.segment, s);
+  Buckets<Split> by_segment = bucket<Split>(n, [&](const auto& put) {
+    for (const Split& s : splits) put(s.segment, s);
   });
-  std::vector<Split>& splits = work.splits;
-  UnionFind classes(work.classes, n_points);
+  const std::vector<int> split_begin = std::move(by_segment.begin);
+  splits = std::move(by_segment.items);
+  UnionFind classes(n_points);
   for (int i = 0; i < n; ++i) {
     const auto first = splits.begin() + split_begin[i], last = splits.begin() + split_begin[i + 1];
     std::sort(first, last, [](const Split& p, const Split& q) {
@@ -354,8 +321,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
       if (t_equal(*(s - 1), *s)) classes.unite((s - 1)->point, s->point);
   }
   // Vertices: the classes' roots, ends first (in xy order), then crossings as found.
-  std::vector<int>& vertex_of = work.vertex_of;
-  vertex_of.assign(n_points, -1);
+  std::vector<int> vertex_of(n_points, -1);
   int n_vertices = 0;
   for (int p = 0; p < n_points; ++p)
     if (classes.find(p) == p) vertex_of[p] = n_vertices++;
@@ -364,16 +330,14 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Edges: the pieces between consecutive distinct points of each segment. Pieces of
   // overlapping segments are the same straight edge when their end vertices are.
-  // Halfedge 2e runs from -> to along segment.
-  std::vector<int>&edge_from = work.edge_from, &edge_to = work.edge_to,
-  &edge_segment = work.edge_segment;
-  edge_from.clear(), edge_to.clear(), edge_segment.clear();
-  std::vector<EdgeSource>& edge_sources = work.edge_sources;
-  edge_sources.clear();
-  std::vector<int>& piece_edge = work.piece_edge;  // per split: the edge of the piece after it
-  piece_edge.assign(splits.size(), -1);
-  std::unordered_map<std::uint64_t, int>& shared = work.shared;
-  shared.clear();
+  struct EdgeSource {
+    int edge, input;
+    bool along;
+  };
+  std::vector<int> edge_from, edge_to, edge_segment;  // halfedge 2e runs from -> to along segment
+  std::vector<EdgeSource> edge_sources;
+  std::vector<int> piece_edge(splits.size(), -1);  // per split: the edge of the piece after it
+  std::unordered_map<std::uint64_t, int> shared;
   for (int i = 0; i < n; ++i) {
     int run = split_begin[i];  // first split of the current point
     for (int k = split_begin[i] + 1; k < split_begin[i + 1]; ++k) {
@@ -399,21 +363,19 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     }
   }
   const int n_edges = int(edge_from.size());
-  std::vector<IPoint>& edge_dir = work.edge_dir;  // of halfedge 2e: its first source's direction
-  edge_dir.resize(n_edges);
+  std::vector<IPoint> edge_dir(n_edges);  // of halfedge 2e: its first source's direction
   for (int e = 0; e < n_edges; ++e) edge_dir[e] = segs[edge_segment[e]].dir();
   auto direction = [&](int h) { return h % 2 ? -edge_dir[h / 2] : edge_dir[h / 2]; };
   auto target = [&](int h) { return h % 2 ? edge_from[h / 2] : edge_to[h / 2]; };
 
   // Around each vertex, its outgoing halfedges counter-clockwise; a halfedge's next is the
   // outgoing one clockwise after its twin (the face on its left continues there).
-  const std::vector<int>& out_begin = work.out_begin;
-  std::vector<int>& out = work.out;
-  bucket_into(work.out_begin, out, n_vertices, [&](const auto& put) {
+  Buckets<int> outgoing = bucket<int>(n_vertices, [&](const auto& put) {
     for (int h = 0; h < 2 * n_edges; ++h) put(target(h ^ 1), h);
   });
-  std::vector<int>& out_pos = work.out_pos;
-  out_pos.resize(2 * size_t(n_edges));
+  const std::vector<int>& out_begin = outgoing.begin;
+  std::vector<int>& out = outgoing.items;
+  std::vector<int> out_pos(2 * n_edges);
   for (int v = 0; v < n_vertices; ++v) {
     if (out_begin[v + 1] - out_begin[v] > 2)  // two are in order either way round
       std::sort(out.begin() + out_begin[v], out.begin() + out_begin[v + 1],
@@ -428,33 +390,28 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   }
 
   // Cycles of `next`, and the connected components of the vertices.
-  std::vector<int>&cycle = work.cycle, &cycle_first = work.cycle_first;
-  cycle.assign(2 * size_t(n_edges), -1), cycle_first.clear();
+  std::vector<int> cycle(2 * n_edges, -1), cycle_first;
   for (int h0 = 0; h0 < 2 * n_edges; ++h0) {
     if (cycle[h0] >= 0) continue;
     const int c = int(cycle_first.size());
     cycle_first.push_back(h0);
     for (int h = h0; cycle[h] < 0; h = map.halfedges[h].next) cycle[h] = c;
   }
-  UnionFind components(work.components, n_vertices);
+  UnionFind components(n_vertices);
   for (int e = 0; e < n_edges; ++e) components.unite(edge_from[e], edge_to[e]);
   // A component's xy-smallest point is a segment's end (every segment's smallest point is), so
   // its lowest vertex among the ends; the cycle leaving it most counter-clockwise bounds the
   // component from outside (the gap towards -x is on its left).
-  std::vector<int>& lowest = work.lowest;  // per component root
-  lowest.assign(n_vertices, -1);
-  std::vector<IPoint>& vertex_point = work.vertex_point;
-  vertex_point.resize(n_end_vertices);
+  std::vector<int> lowest(n_vertices, -1);  // per component root
+  std::vector<IPoint> vertex_point(n_end_vertices);
   for (int p = 0; p < n_ends; ++p) vertex_point[vertex_of[p]] = end_point[p];
   for (int v = 0; v < n_end_vertices; ++v) {
     int& l = lowest[components.find(v)];
     if (l < 0 || lex_less(vertex_point[v], vertex_point[l])) l = v;
   }
   // Per cycle: the component it bounds from outside, or -1.
-  std::vector<int>& outside_of = work.outside_of;
-  outside_of.assign(cycle_first.size(), -1);
-  std::vector<int>& component_roots = work.component_roots;
-  component_roots.clear();
+  std::vector<int> outside_of(cycle_first.size(), -1);
+  std::vector<int> component_roots;
   for (int v = 0; v < n_vertices; ++v) {
     if (lowest[v] < 0) continue;
     const int w = lowest[v];
@@ -466,8 +423,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   }
 
   // Faces: the unbounded one, then one per cycle that is not a component's outside.
-  std::vector<int>& face_of_cycle = work.face_of_cycle;
-  face_of_cycle.assign(cycle_first.size(), -1);
+  std::vector<int> face_of_cycle(cycle_first.size(), -1);
   map.unbounded_face = 0;
   map.faces.resize(1);
   for (int c = 0; c < int(cycle_first.size()); ++c)
@@ -480,10 +436,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   // segment met, at an inner point of one of its edges or at a vertex, has the face on its side.
   // `around` is the halfedge whose left face holds the component, -1 for the unbounded face.
   const int n_components = int(component_roots.size());
-  std::vector<int>& around = work.around;
-  around.assign(n_components, -1);
-  std::vector<int>& seen = work.seen;
-  seen.assign(n, -1);
+  std::vector<int> around(n_components, -1);
+  std::vector<int> seen(n, -1);
   for (int m = 0; m < n_components; ++m) {
     const IPoint o = vertex_point[lowest[component_roots[m]]];
     // Best hit so far: x = num / den (den > 0) on segment `hit`, or at vertex `hit_vertex`.
@@ -551,11 +505,9 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
     around[m] = last;
   }
   // A component inside a face bounded by another component's outside lies in that one's face.
-  std::vector<int>& face_of_component = work.face_of_component;
-  face_of_component.assign(n_components, -2);
+  std::vector<int> face_of_component(n_components, -2);
   auto face_of = [&](int m) {
-    std::vector<int>& chain = work.chain;
-    chain.clear();
+    std::vector<int> chain;
     while (face_of_component[m] == -2) {
       if (int(chain.size()) > n_components)
         throw std::logic_error("arrangement: components nested in a cycle");
@@ -580,22 +532,22 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   for (int h = 0; h < 2 * n_edges; ++h) map.halfedges[h].face = face_of_cycle[cycle[h]];
   // Holes, grouped by face in component order.
   {
-    std::vector<int>& outside_cycle = work.outside_cycle;
-    outside_cycle.resize(n_components);
+    std::vector<int> outside_cycle(n_components);
     for (int c = 0; c < int(cycle_first.size()); ++c)
       if (outside_of[c] >= 0) outside_cycle[outside_of[c]] = c;
-    std::vector<int>& holes_begin = work.holes_begin;
-    bucket_into(holes_begin, map.holes, int(map.faces.size()), [&](const auto& put) {
+    Buckets<int> holes = bucket<int>(int(map.faces.size()), [&](const auto& put) {
       for (int m = 0; m < n_components; ++m) put(face_of(m), cycle_first[outside_cycle[m]]);
     });
     for (size_t f = 0; f < map.faces.size(); ++f)
-      map.faces[f].holes_begin = holes_begin[f], map.faces[f].holes_end = holes_begin[f + 1];
+      map.faces[f].holes_begin = holes.begin[f], map.faces[f].holes_end = holes.begin[f + 1];
+    map.holes = std::move(holes.items);
   }
 
   // Sources per edge, in input order (they were found segment by segment).
-  bucket_into(map.source_begin, map.sources, n_edges, [&](const auto& put) {
-    for (const EdgeSource& s : edge_sources) put(s.edge, PlanarMap::Source{s.input, s.along});
+  Buckets<PlanarMap::Source> sources = bucket<PlanarMap::Source>(n_edges, [&](const auto& put) {
+    for (const EdgeSource& s : edge_sources) put(s.edge, {s.input, s.along});
   });
+  map.source_begin = std::move(sources.begin), map.sources = std::move(sources.items);
 
   // Coordinates: a segment's end as given (so that the resolver's parameters along a segment
   // are its own at its ends, and consecutive pieces abut exactly), a crossing rounded once from

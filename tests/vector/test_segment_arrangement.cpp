@@ -207,6 +207,3 @@ TEST_CASE("arrange_segments names a non-finite segment", "[vector][arrangement]"
   CHECK(empty.faces.size() == 1);
   CHECK(empty.edge_count() == 0);
 }
-
-// arrange_segments and build_arrangement keep their arrays per thread across calls: a call after
-// a larger one, and after one that threw, gives what a first call gives.
