@@ -282,16 +282,13 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         // block one (with a margin far above rounding, so no test's answer changes).
         near.clear();
         blockers.clear();
-        const Vector2d reach_lo(x - 0.5 - 1e-6, y - 0.5 - 1e-6),
-            reach_hi(x + 1.5 + 1e-6, y + 1.5 + 1e-6);
+        const Eigen::AlignedBox2d reach(Vector2d(x - 0.5 - 1e-6, y - 0.5 - 1e-6),
+                                        Vector2d(x + 1.5 + 1e-6, y + 1.5 + 1e-6));
         for (int k : local) {
           const Segment& g = segments[k];
           const Vector2d d = g.b - g.a;
           near.push_back({g.a, g.b, d, d.squaredNorm(), k, g.curve});
-          if (std::max(g.a.x(), g.b.x()) >= reach_lo.x() &&
-              std::min(g.a.x(), g.b.x()) <= reach_hi.x() &&
-              std::max(g.a.y(), g.b.y()) >= reach_lo.y() &&
-              std::min(g.a.y(), g.b.y()) <= reach_hi.y())
+          if (reach.intersects(Eigen::AlignedBox2d(g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))))
             blockers.push_back(near.back());
         }
 

@@ -249,8 +249,7 @@ Problem rasterize_at(const std::vector<DiffusionCurve>& curves, const Eigen::Vec
     std::vector<PathSample> poly = flatten(curves[k], options.flatten_tolerance);
     // Exact for an integer origin and coordinates within the window, so that the crossings are
     // the whole image's, shifted.
-    if (origin != Eigen::Vector2d::Zero())
-      for (PathSample& s : poly) s.p -= origin;
+    for (PathSample& s : poly) s.p -= origin;
     for (size_t s = 1; s < poly.size(); ++s) r.edge(k, poly[s - 1], poly[s]);
   }
   if (options.dirichlet == DirichletSampling::NearestClaim)
