@@ -221,14 +221,18 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
     throw std::invalid_argument("antialias: image planes do not match the size");
   const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
-  return antialias(curves, width, height, source, planes, region, options);
+  return antialias(curves, width, height, source, {0, 0, width, height}, planes, region, options);
 }
 
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
-                         const std::vector<float>& source, std::vector<float>& planes,
-                         const AntialiasRegion* region, const AntialiasOptions& options) {
+                         const std::vector<float>& source, const PixelWindow& source_window,
+                         std::vector<float>& planes, const AntialiasRegion* region,
+                         const AntialiasOptions& options) {
   const size_t n_pixels = size_t(width) * size_t(height);
-  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels || source.size() < 3 * n_pixels)
+  const PixelWindow& sw = source_window;
+  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels ||
+      source.size() < 3 * sw.pixel_count() || sw.x < 0 || sw.y < 0 || sw.width < 0 ||
+      sw.height < 0 || sw.x + sw.width > width || sw.y + sw.height > height)
     throw std::invalid_argument("antialias: image planes do not match the size");
   if (region && region->centres.size() != n_pixels)
     throw std::invalid_argument("antialias: region does not match the image size");
@@ -305,8 +309,15 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
         // moved towards the colour of the nearest curve as q is nearer to it than the centre is
         // (the linear profile that the solve's boundary rule assumes along a link).
-        const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, size_t c) {
-          const Color solved(source[c], source[n_pixels + c], source[2 * n_pixels + c]);
+        const size_t n_source = sw.pixel_count();
+        const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, int cx, int cy) {
+          const size_t c = size_t(cy) * width + cx;
+          const int sx = cx - sw.x, sy = cy - sw.y;
+          const size_t s = size_t(sy) * sw.width + sx;
+          const Color solved =
+              sx >= 0 && sy >= 0 && sx < sw.width && sy < sw.height
+                  ? Color(source[s], source[n_source + s], source[2 * n_source + s])
+                  : Color::Zero();
           const NearestPoint at = nearest_point(q, near, segments);
           Color wall;
           if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
@@ -333,7 +344,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             // always a curve: the head hides hair along its own outline).
             if (blocked || (region && !region->centres[c])) continue;
             reached = true;
-            sum += sample_colour(q, centre, c);
+            sum += sample_colour(q, centre, cx, cy);
             ++count;
             break;
           }

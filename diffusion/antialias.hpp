@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "diffusion/diffusion_curve.hpp"
+#include "diffusion/rasterize.hpp"
 
 namespace wisp::diffusion {
 
@@ -48,9 +49,11 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
 // The same, reading the solved colours from `source` and writing the re-sampled pixels into
 // `planes`, which holds the same colours on entry: for a caller that keeps the plain solve (the
 // renderer's warm start) beside the anti-aliased image, without a third copy of the image.
+// `source` holds three planes of the pixels of `source_window` only (a solve of part of the
+// image, rasterize.hpp), and stands for 0 outside it.
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
-                         const std::vector<float>& source, std::vector<float>& planes,
-                         const AntialiasRegion* region = nullptr,
+                         const std::vector<float>& source, const PixelWindow& source_window,
+                         std::vector<float>& planes, const AntialiasRegion* region = nullptr,
                          const AntialiasOptions& options = {});
 
 }  // namespace wisp::diffusion

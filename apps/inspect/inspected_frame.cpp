@@ -32,8 +32,7 @@ InspectFrame FrameSource::render(int k) {
     }
   for (int j = from; j < k; ++j) {
     const auto prev = solved_.find(j - 1);
-    const std::vector<float>* warm =
-        prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
+    const render::FrameSolution* warm = prev != solved_.end() ? &prev->second : nullptr;
     solved_[j] = render::render_frame(frames_.projected[j], {}, render::frame_occluders(frames_, j),
                                       render::frame_base(frames_, j), setup_, warm,
                                       render::motion_neighbour(frames_, j))
@@ -54,8 +53,7 @@ InspectFrame FrameSource::render(int k) {
     out.residual.push_back(std::move(magnitude));
   };
   const auto prev = solved_.find(k - 1);
-  const std::vector<float>* warm =
-      k > first && prev != solved_.end() && !prev->second.empty() ? &prev->second : nullptr;
+  const render::FrameSolution* warm = k > first && prev != solved_.end() ? &prev->second : nullptr;
   out.result = render::render_frame(
       frames_.projected[k], render::frame_body(frames_, k), render::frame_occluders(frames_, k),
       render::frame_base(frames_, k), setup, warm, render::motion_neighbour(frames_, k));

@@ -45,7 +45,7 @@ class FrameSource {
   render::SceneFrames frames_;
   render::FrameSetup setup_;
   int block_ = 1;
-  std::map<int, std::vector<float>> solved_;  // solutions of frames of the current block
+  std::map<int, render::FrameSolution> solved_;  // solutions of frames of the current block
 };
 
 }  // namespace wisp::inspect

@@ -63,8 +63,8 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 // Mixes the two sides' colours in every hair pixel that a visible curve crosses, by area; pixels
 // outside the hair mask do not count, since the mask clips the hair image with its own coverage.
 diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionCurve>& curves,
-                                         const vector::HairMask& mask,
-                                         const std::vector<float>& solved, diffusion::Image& hair) {
+                                         const vector::HairMask& mask, const FrameSolution& solved,
+                                         diffusion::Image& hair) {
   diffusion::AntialiasRegion region;
   region.centres.assign(size_t(hair.width) * hair.height, 0);
   for (const vector::MaskPolygon& m : mask.polygons) {
@@ -72,35 +72,27 @@ diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionC
     region.rings.insert(region.rings.end(), m.holes.begin(), m.holes.end());
   }
   vector::fill_centres(region.centres, hair.width, hair.height, region.rings, std::uint8_t(1));
-  return diffusion::antialias(curves, hair.width, hair.height, solved, hair.planes, &region);
+  return diffusion::antialias(curves, hair.width, hair.height, solved.colours, solved.window,
+                              hair.planes, &region);
 }
 
 // The colour solve's window around the curves (see render_solve).
 constexpr int kWindowMargin = 8;
 constexpr int kWindowAlign = 32;
 
-// The pixels of `window` from `channels` planes of a width x height image (and no more planes).
-std::vector<float> window_planes(const std::vector<float>& image, int channels, int width,
-                                 int height, const diffusion::PixelWindow& window) {
-  const size_t n = size_t(width) * height, m = window.pixel_count();
-  std::vector<float> out(channels * m);
-  for (int c = 0; c < channels; ++c)
-    for (int y = 0; y < window.height; ++y) {
-      const float* from = &image[c * n + size_t(window.y + y) * width + window.x];
-      std::copy(from, from + window.width, &out[c * m + size_t(y) * window.width]);
-    }
-  return out;
-}
-
-// The inverse: planes of `window` placed in planes of a width x height image, 0 outside.
-std::vector<float> image_planes(const std::vector<float>& planes, int channels,
-                                const diffusion::PixelWindow& window, int width, int height) {
-  const size_t n = size_t(width) * height, m = window.pixel_count();
-  std::vector<float> out(channels * n, 0.0f);
-  for (int c = 0; c < channels; ++c)
-    for (int y = 0; y < window.height; ++y) {
-      const float* from = &planes[c * m + size_t(y) * window.width];
-      std::copy(from, from + window.width, &out[c * n + size_t(window.y + y) * width + window.x]);
+// The planes of the window `to` from `channels` planes of the window `from` (either may be the
+// whole image), 0 where `to` reaches outside `from`.
+std::vector<float> window_planes(const std::vector<float>& planes, int channels,
+                                 const diffusion::PixelWindow& from,
+                                 const diffusion::PixelWindow& to) {
+  const size_t n = from.pixel_count(), m = to.pixel_count();
+  std::vector<float> out(channels * m, 0.0f);
+  const int x0 = std::max(from.x, to.x), x1 = std::min(from.x + from.width, to.x + to.width);
+  const int y0 = std::max(from.y, to.y), y1 = std::min(from.y + from.height, to.y + to.height);
+  for (int c = 0; c < channels && x0 < x1; ++c)
+    for (int y = y0; y < y1; ++y) {
+      const float* row = &planes[c * n + size_t(y - from.y) * from.width + (x0 - from.x)];
+      std::copy(row, row + (x1 - x0), &out[c * m + size_t(y - to.y) * to.width + (x0 - to.x)]);
     }
   return out;
 }
@@ -188,7 +180,7 @@ FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
 }
 
 void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
-                  const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
+                  const FrameSolution* warm_start, const sim::ProjectedFrame* neighbour) {
   const auto t_start = Clock::now();
   FramePicture& pic = r.picture;
   const int W = pic.width, H = pic.height;
@@ -208,38 +200,32 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
     r.problem = diffusion::rasterize(r.curves, win);
     r.time.rasterize = ms_since(t0);
     t0 = Clock::now();
-    // The warm start holds the colours, then the previous blur map when there was one.
-    const size_t n = size_t(W) * H;
-    const bool warm = warm_start && (warm_start->size() == 3 * n || warm_start->size() == 4 * n);
+    const diffusion::PixelWindow image{0, 0, W, H};
+    const bool warm = warm_start && warm_start->width == W && warm_start->height == H;
     // No pixel near a curve (the hair is out of the picture): nothing to solve.
     diffusion::Solution s;
     if (win.pixel_count() > 0)
-      s = warm ? diffusion::solve_multigrid(r.problem, setup.solver,
-                                            window_planes(*warm_start, 3, W, H, win))
+      s = warm ? diffusion::solve_multigrid(
+                     r.problem, setup.solver,
+                     window_planes(warm_start->colours, 3, warm_start->window, win))
                : diffusion::solve_multigrid(r.problem, setup.solver);
     r.time.solve = ms_since(t0);
     r.solve = s.stats;
     // The constraints are done with (the inspector shows them), before the images below.
     if (!setup.keep_faces) r.problem = {};
-    // The next frame's warm start: the plain solve.
-    r.solution = image_planes(s.planes, 3, win, W, H);
-    s.planes = {};
-    // The picture's own copy, since anti-aliasing changes it and not the warm start; anti-aliasing
-    // reads the plain solve and writes the copy, so no third image is made.
-    pic.hair = {W, H, r.solution};
+    // The picture's image, which anti-aliasing changes; the plain solve stays the window's.
+    pic.hair = {W, H, window_planes(s.planes, 3, win, image)};
+    r.solution = {W, H, win, std::move(s.planes), {}};
     t0 = Clock::now();
     const std::vector<diffusion::DiffusionCurve> blurred = vector::blur_curves(
         frame, r.wisps, r.arrangement, setup.style.blur, {setup.lens, neighbour});
     if (!blurred.empty()) {
       // The whole image: the blur spreads the hair beyond its mask, where the map is read.
-      const bool warm_blur = warm && warm_start->size() == 4 * n;
-      const std::vector<float> previous_blur =
-          warm_blur ? std::vector<float>(warm_start->begin() + 3 * n, warm_start->end())
-                    : std::vector<float>();
+      const bool warm_blur = warm && !warm_start->blur.empty();
       diffusion::Solution b = diffusion::solve_blur_map(blurred, W, H, setup.solver,
-                                                        warm_blur ? &previous_blur : nullptr);
+                                                        warm_blur ? &warm_start->blur : nullptr);
       pic.blur = std::move(b.planes);
-      r.solution.insert(r.solution.end(), pic.blur.begin(), pic.blur.end());
+      r.solution.blur = pic.blur;
       r.time.blur = ms_since(t0);
     }
   }
@@ -247,7 +233,7 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
   r.time.total += ms_since(t_start);
 }
 
-void render_finish(FrameResult& r, const FrameSetup& setup, const std::vector<float>& solved) {
+void render_finish(FrameResult& r, const FrameSetup& setup, const FrameSolution& solved) {
   const auto t_start = Clock::now();
   FramePicture& pic = r.picture;
   if (!r.curves.empty()) {
@@ -266,14 +252,14 @@ void render_finish(FrameResult& r, const FrameSetup& setup, const std::vector<fl
 }
 
 void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
-                    const std::vector<float>* warm_start, const sim::ProjectedFrame* neighbour) {
+                    const FrameSolution* warm_start, const sim::ProjectedFrame* neighbour) {
   render_solve(r, frame, setup, warm_start, neighbour);
   render_finish(r, setup, r.solution);
 }
 
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, vector::HairBase base,
-                         const FrameSetup& setup, const std::vector<float>* warm_start,
+                         const FrameSetup& setup, const FrameSolution* warm_start,
                          const sim::ProjectedFrame* neighbour) {
   FrameResult r =
       render_geometry(frame, std::move(body), std::move(occluders), std::move(base), setup);

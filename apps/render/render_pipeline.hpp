@@ -49,6 +49,16 @@ struct FrameTimings {
   double body = 0;       // before the hair: the body's paths and occluders, the hair base
 };
 
+// A frame's plain solve: what anti-aliasing reads and what the next frame's solve starts from.
+// Only the colour solve's window is kept (the solution is 0 outside it, see FrameResult::window),
+// so a frame holds no whole-image copy of it.
+struct FrameSolution {
+  int width = 0, height = 0;      // the image's
+  diffusion::PixelWindow window;  // of the colour solve (FrameResult::window)
+  std::vector<float> colours;     // three planes of window.pixel_count() floats
+  std::vector<float> blur;        // the blur map's solve, width x height, or empty
+};
+
 struct FrameResult {
   FramePicture picture;
   std::vector<vector::Wisp> wisps;
@@ -66,8 +76,7 @@ struct FrameResult {
   diffusion::Problem problem;  // the rasterized constraints (inspector): only with keep_faces
   diffusion::SolveStats solve;
   diffusion::AntialiasStats antialias;
-  // The solved RGB planes, then the blur map when there is one: the next frame's warm start.
-  std::vector<float> solution;
+  FrameSolution solution;  // the next frame's warm start
   FrameTimings time;
 };
 
@@ -76,11 +85,11 @@ struct FrameResult {
 // arrangement cuts it along their silhouettes, so hair slides behind the head continuously
 // instead of losing whole samples; without, wisps keep the samples the camera marked visible.
 // `base`: the hair base of the frame (scene_frames.hpp: frame_base), or empty for none.
-// `warm_start`: the previous frame's solution (same size) or null. `neighbour`: the frame before
-// (or after, for the first), for the blur's motion (vector::BlurSources); null: no motion.
+// `warm_start`: the previous frame's solution (same image size) or null. `neighbour`: the frame
+// before (or after, for the first), for the blur's motion (vector::BlurSources); null: no motion.
 FrameResult render_frame(const sim::ProjectedFrame& frame, BodyLayer body,
                          std::vector<vector::Occluder> occluders, vector::HairBase base,
-                         const FrameSetup& setup, const std::vector<float>* warm_start,
+                         const FrameSetup& setup, const FrameSolution* warm_start,
                          const sim::ProjectedFrame* neighbour = nullptr);
 
 // render_frame in its two halves, for renderers that overlap frames (render_range.hpp): the
@@ -91,7 +100,7 @@ FrameResult render_geometry(const sim::ProjectedFrame& frame, BodyLayer body,
                             std::vector<vector::Occluder> occluders, vector::HairBase base,
                             const FrameSetup& setup);
 void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
-                    const std::vector<float>* warm_start,
+                    const FrameSolution* warm_start,
                     const sim::ProjectedFrame* neighbour = nullptr);
 
 // render_shading in its two halves: render_solve is what the next frame's warm start depends on
@@ -99,8 +108,7 @@ void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const Fram
 // render_finish depends on this frame alone (anti-aliasing from the plain solve `solved`, which
 // is r.solution or the caller's copy of it, and the re-blur), so frames may finish in parallel.
 void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
-                  const std::vector<float>* warm_start,
-                  const sim::ProjectedFrame* neighbour = nullptr);
-void render_finish(FrameResult& r, const FrameSetup& setup, const std::vector<float>& solved);
+                  const FrameSolution* warm_start, const sim::ProjectedFrame* neighbour = nullptr);
+void render_finish(FrameResult& r, const FrameSetup& setup, const FrameSolution& solved);
 
 }  // namespace wisp::render

@@ -172,7 +172,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
     int k = 0;
     Clock::time_point start;
     FrameResult r;
-    std::shared_ptr<const std::vector<float>> solved;  // the plain solve, until anti-aliased
+    std::shared_ptr<const FrameSolution> solved;  // the plain solve, until anti-aliased
   };
   // Frames overlap in a pipeline: the geometry of any frame may run while a frame is solved, and
   // the solves run one frame at a time in order, each warm-started by the frame before when both
@@ -181,7 +181,7 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
   // workspace's memory instead of one per thread), and the pixels are those of a serial run.
   // Anti-aliasing needs no other frame: it leaves the serial stage, reading the plain solve that
   // it shares with the next frame's warm start (no copy).
-  std::shared_ptr<const std::vector<float>> warm;
+  std::shared_ptr<const FrameSolution> warm;
   std::size_t next = 0;
   const std::size_t tokens = std::size_t(tbb::this_task_arena::max_concurrency()) + 1;
   using Frame = std::shared_ptr<InFlight>;
@@ -220,20 +220,18 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                 f->r.time.body = body_ms;
                 return f;
               }) &
-          tbb::make_filter<Frame, Frame>(
-              tbb::filter_mode::serial_in_order,
-              [&](Frame f) {
-                const int k = f->k;
-                if (k % plan.block == 0) warm.reset();  // cold
-                tbb::this_task_arena::isolate([&] {
-                  render_solve(f->r, frames.projected[k], setup,
-                               warm && !warm->empty() ? warm.get() : nullptr,
-                               motion_neighbour(frames, k));
-                });
-                f->solved = warm =
-                    std::make_shared<const std::vector<float>>(std::move(f->r.solution));
-                return f;
-              }) &
+          tbb::make_filter<Frame, Frame>(tbb::filter_mode::serial_in_order,
+                                         [&](Frame f) {
+                                           const int k = f->k;
+                                           if (k % plan.block == 0) warm.reset();  // cold
+                                           tbb::this_task_arena::isolate([&] {
+                                             render_solve(f->r, frames.projected[k], setup,
+                                                          warm.get(), motion_neighbour(frames, k));
+                                           });
+                                           f->solved = warm = std::make_shared<const FrameSolution>(
+                                               std::move(f->r.solution));
+                                           return f;
+                                         }) &
           tbb::make_filter<Frame, Frame>(tbb::filter_mode::parallel,
                                          [&](Frame f) {
                                            // Solved only to warm-start the next frame: done.

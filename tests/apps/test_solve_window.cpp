@@ -21,7 +21,7 @@ const std::string kScene = WISP_SOURCE_DIR "/data/scenes/bob.json";
 constexpr int kSize = 320;
 
 render::FrameResult render_at(const render::SceneFrames& sf, int k, bool whole,
-                              const std::vector<float>* warm) {
+                              const render::FrameSolution* warm) {
   render::FrameSetup setup = render::frame_setup(sf.scene);
   setup.whole_image_solve = whole;
   return render::render_frame(sf.projected[k], render::frame_body(sf, k),
@@ -58,15 +58,18 @@ TEST_CASE("solving the curves' window alone changes no pixel beyond the solver's
     INFO((pair == &cold_window ? "cold" : "warm") << " frame: " << differ << " bytes differ");
     CHECK(largest <= 1);
     CHECK(differ <= int(pa.size() / 1000));
-    // Outside the window the solution is 0: nothing was solved there.
+    // The kept solution is the window's alone, and the hair image is 0 outside it: nothing was
+    // solved there.
     const diffusion::PixelWindow& v = a.window;
+    CHECK(a.solution.window == v);
+    CHECK(a.solution.colours.size() == 3 * v.pixel_count());
     int outside = 0, nonzero = 0;
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
         if (x >= v.x && x < v.x + v.width && y >= v.y && y < v.y + v.height) continue;
         ++outside;
         for (int c = 0; c < 3; ++c)
-          nonzero += a.solution[size_t(c) * kSize * kSize + y * kSize + x] != 0;
+          nonzero += a.picture.hair.planes[size_t(c) * kSize * kSize + y * kSize + x] != 0;
       }
     CHECK(outside > 0);
     CHECK(nonzero == 0);
@@ -84,8 +87,8 @@ TEST_CASE("a frame whose hair lies outside the picture solves nothing and shows 
   const render::FrameResult r = render::render_frame(away, {}, {}, {}, setup, nullptr);
   CHECK(r.window.pixel_count() == 0);
   CHECK(r.solve.cycles == 0);
-  // Nothing solved: no warm start for the next frame, or one of zeros.
-  CHECK(std::all_of(r.solution.begin(), r.solution.end(), [](float v) { return v == 0.0f; }));
+  // Nothing solved: the warm start for the next frame holds no colours (it stands for zeros).
+  CHECK(r.solution.colours.empty());
   CHECK(r.picture.mask.polygons.empty());
   // The next frame, back in the picture, starts from that.
   const render::FrameResult next = render_at(sf, k, false, &r.solution);
