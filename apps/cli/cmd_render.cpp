@@ -31,16 +31,6 @@
 #include "io/video_file.hpp"
 #include "sim/choices.hpp"
 
-// jemalloc (linked with the arrangement, vector/CMakeLists.txt) reads its options from this
-// symbol at start-up. A frame's CGAL arrangement allocates and frees tens of MB. By default freed
-// pages stay resident for 10 s, and each of the process's threads (frame workers, feed, writer)
-// allocates from an arena of its own (eight on two cores), each keeping its own freed pages: two
-// arenas, and a background thread returning freed pages after a quarter second, take the peak at
-// 1024² from 480-490 to 280-285 MB for no measurable CPU (docs/performance.md, "Memory: 300
-// MB"). MALLOC_CONF in the environment still overrides it.
-extern "C" const char* malloc_conf;
-const char* malloc_conf = "background_thread:true,narenas:2,dirty_decay_ms:250,muzzy_decay_ms:0";
-
 namespace wisp::cli {
 namespace {
 

@@ -1,0 +1,20 @@
+// jemalloc's options for every wisp program (linked into each wisp-<command>, wisp-inspect and
+// wisp-bench). jemalloc is linked with the arrangement (vector/CMakeLists.txt) and reads this
+// symbol at start-up; MALLOC_CONF in the environment still overrides it.
+//
+// Why these (docs/performance.md, "Page faults and huge pages"): a 1024^2 frame allocates and frees
+// tens of MB (the arrangement, the image planes, Cairo's surfaces), and on a virtual machine every
+// page that comes back to the process costs a page fault of about 10 us. With pages returned a
+// quarter second after they were freed, `wisp render` of the default scene took 1.4 million faults
+// and 40 % of its CPU in them. Freed pages are now kept for 3 s, long enough to be reused by the
+// next frames, and large extents are backed by transparent huge pages (2 MB: a 512th of the faults
+// and of the TLB misses; the solver's passes over 12 MB planes run at half the user time in
+// `wisp diffuse`). One arena for all threads keeps one pool of freed pages rather than one a
+// thread, which holds the peak at 1024^2 with two threads at 236-246 MB (target 300). A
+// background thread returns the pages once they have not been used for that long.
+extern "C" {
+extern const char* malloc_conf;
+const char* malloc_conf =
+    "background_thread:true,narenas:1,dirty_decay_ms:3000,muzzy_decay_ms:0,thp:always,"
+    "metadata_thp:always";
+}
