@@ -201,6 +201,8 @@ class Multigrid {
   void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr,
               const RowHook* row_first = nullptr);
   void relax_row(Level& L, int y, int x_parity);
+  // Both colours of row y of a 9-point level: parity `first`, then the other (see smooth()).
+  void relax_row_pair(Level& L, int y, int first);
   void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
                     float* const out[NC], float* norms) const;
   void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
@@ -925,6 +927,101 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   }
 }
 
+// Row y of a 9-point level relaxed at parity `first`, then at the other parity: what
+// relax_row(L, y, first) and relax_row(L, y, 1 - first) compute, to the bit. The AVX-512 path does
+// both in one pass over the row, a block of sixteen points behind: block i's first parity, then
+// block i-1's second, whose west and east neighbours (of the first parity) are the values just
+// computed, taken from registers (no load waits for a store), and the same sixteen points'
+// diagonal-neighbour sum (rows y-1 and y+1, which neither parity changes) computed once for both.
+// Each point's operations are relax_row's in its order.
+template <int NC>
+void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  const size_t n = L.padded(), row = L.at(0, y);
+  const int s = L.stride, w = L.w;
+  float* __restrict e[NC];
+  const float* __restrict b[NC];
+  for (int c = 0; c < NC; ++c) {
+    e[c] = &L.e[c * n + row];
+    b[c] = &L.rhs[c * n + row];
+  }
+  const RowCouplings a(L, row);
+  const float* id = &L.inv_diag[row];
+  const __mmask16 second = first ? 0x5555 : 0xAAAA;
+  const auto lanes = [&](int x) {
+    return w - x >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (w - x)) - 1);
+  };
+  // Per channel: the first parity's values of the block before (`last`) and of the one before
+  // that (`before`; its lane 15 is the west neighbour of the block's lane 0), and the block
+  // before's diagonal-neighbour sum. Outside the row: the ghost values.
+  __m512 last[NC], before[NC], u_last[NC];
+  for (int c = 0; c < NC; ++c) {
+    last[c] = _mm512_set1_ps(e[c][-1]);
+    before[c] = last[c];
+    u_last[c] = _mm512_setzero_ps();
+  }
+  for (int x = 0; x < w + 16; x += 16) {
+    __m512 now[NC], u_now[NC];
+    if (x < w) {
+      // The first parity of block x, as relax_row computes it (every lane; the first parity's
+      // lanes are kept).
+      const __mmask16 in = lanes(x);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+      const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+      const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+        u_now[c] = u;
+        t = _mm512_add_ps(t, u);
+        // Lanes outside the row: the ghost value (lane w - x is the east neighbour of w - 1).
+        now[c] = _mm512_mask_mov_ps(_mm512_set1_ps(ec[w]), in,
+                                    _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      }
+    } else {
+      for (int c = 0; c < NC; ++c) now[c] = _mm512_set1_ps(e[c][w]), u_now[c] = _mm512_setzero_ps();
+    }
+    if (x > 0) {
+      // The second parity of block x - 16: its west and east neighbours are of the first parity,
+      // in `last` and its neighbours in registers. Stored with the block's first parity.
+      const int xb = x - 16;
+      const __mmask16 in = lanes(xb);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + xb); };
+      const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        const __m512 west = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(last[c]), _mm512_castps_si512(before[c]), 15));
+        const __m512 east = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(now[c]), _mm512_castps_si512(last[c]), 1));
+        __m512 t = _mm512_mul_ps(pw, west);
+        t = _mm512_fmadd_ps(pe, east, t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        t = _mm512_add_ps(t, u_last[c]);
+        const __m512 r = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
+        _mm512_mask_storeu_ps(e[c] + xb, in, _mm512_mask_mov_ps(last[c], second, r));
+      }
+    }
+    for (int c = 0; c < NC; ++c) {
+      before[c] = last[c];
+      last[c] = now[c];
+      u_last[c] = u_now[c];
+    }
+  }
+#else
+  relax_row(L, y, first);
+  relax_row(L, y, 1 - first);
+#endif
+}
+
 // Gauss-Seidel in an order-independent colouring: red-black on the 5-point finest level, four
 // colours (x parity, y parity) on the 9-point levels. Each sweep has two stages, A and B:
 // red then black, or even rows (colours 0, 1) then odd rows (colours 2, 3); reversed for
@@ -951,8 +1048,7 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
     }
     const bool first_rows = reverse ? (y & 1) : !(y & 1);
     if (first_rows != first) return;
-    relax_row(L, y, reverse ? 1 : 0);
-    relax_row(L, y, reverse ? 0 : 1);
+    relax_row_pair(L, y, reverse ? 1 : 0);
   };
   if (stages == 0) {
     if (row_first)
