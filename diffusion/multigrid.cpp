@@ -868,6 +868,13 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
         finest ? RowCouplings(nullptr, nullptr, nullptr, nullptr, s) : RowCouplings(L, row);
     const float* id = finest ? nullptr : &L.inv_diag[row];
     const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
+    // A block's values are stored after the next block's loads: those overlap the block's
+    // sixteen points (its last as a west neighbour), and a load that overlaps a store still in
+    // flight waits for it. What they read there is of the other parity, unchanged either way.
+    __m512 pending[NC];
+    for (__m512& v : pending) v = _mm512_setzero_ps();
+    __mmask16 pending_lanes = 0;
+    int pending_x = 0;
     for (int x = 0; x < L.w; x += 16) {
       const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
       const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
@@ -881,6 +888,7 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
         if (a.nine_point)
           pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       }
+      __m512 now[NC];
       for (int c = 0; c < NC; ++c) {
         const float* ec = e[c];
         __m512 t = _mm512_mul_ps(pw, load(ec - 1));
@@ -894,10 +902,14 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
           u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
           t = _mm512_add_ps(t, u);
         }
-        _mm512_mask_storeu_ps(e[c] + x, in & parity,
-                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+        now[c] = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
       }
+      for (int c = 0; c < NC; ++c)
+        _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]), pending[c] = now[c];
+      pending_lanes = in & parity;
+      pending_x = x;
     }
+    for (int c = 0; c < NC; ++c) _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]);
   }
   return;
 #endif
