@@ -526,6 +526,31 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
   return out;
 }
 
+// Row p of A P, p = (x, y) with x % 2 == PX and y % 2 == PY (see galerkin_product): the 3x3
+// block of coarse points from base(p), as sum over the stencil's nine points q of coeff(q) times
+// the P row of q (w: the P rows of p's neighbours, row by row). The terms are added in the order
+// of q, then of q's weights, each as one fused multiply-add into its coarse point's sum, which
+// starts at +0: a zero coupling or weight adds +-0 and leaves it as it is, so no term is tested.
+// Everything is indexed by constants, so the nine sums stay in registers.
+template <int PX, int PY>
+inline void ap_row(const float (&coeff)[9], const float* const (&w)[9], float* out) {
+  float o[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+#pragma GCC unroll 3
+  for (int dy = -1; dy <= 1; ++dy)
+#pragma GCC unroll 3
+    for (int dx = -1; dx <= 1; ++dx) {
+      // ((x + dx) >> 1) - ((x - 1) >> 1) for x of parity PX, and the same for y.
+      const int ox = ((PX + dx) >> 1) - ((PX - 1) >> 1), oy = ((PY + dy) >> 1) - ((PY - 1) >> 1);
+      const float c = coeff[(dy + 1) * 3 + dx + 1];
+      const float* q = w[(dy + 1) * 3 + dx + 1];
+      o[oy * 3 + ox] += c * q[0];
+      o[oy * 3 + ox + 1] += c * q[1];
+      o[(oy + 1) * 3 + ox] += c * q[2];
+      o[(oy + 1) * 3 + ox + 1] += c * q[3];
+    }
+  for (int m = 0; m < 9; ++m) out[m] = o[m];
+}
+
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
@@ -632,19 +657,24 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
         std::fill_n(out, 9, 0.0f);
         if (!F.alive[k]) continue;
-        const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
         const Stencil st = stencil_at(F, k);
         const float coeff[9] = {-st.nw, -st.n, -st.ne, -st.w, st.d, -st.e, -st.sw, -st.s, -st.se};
+        const float* w[9];
         for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const float c = coeff[(dy + 1) * 3 + dx + 1];
-            if (c == 0.0f) continue;
-            const float* w = pw_at(x + dx, y + dy);
-            const int ox = ((x + dx) >> 1) - bx, oy = ((y + dy) >> 1) - by;
-            for (int j = 0; j < 2; ++j)
-              for (int i = 0; i < 2; ++i)
-                if (w[j * 2 + i] != 0.0f) out[(oy + j) * 3 + ox + i] += c * w[j * 2 + i];
-          }
+          for (int dx = -1; dx <= 1; ++dx) w[(dy + 1) * 3 + dx + 1] = pw_at(x + dx, y + dy);
+        switch ((x & 1) | (y & 1) << 1) {
+          case 0:
+            ap_row<0, 0>(coeff, w, out);
+            break;
+          case 1:
+            ap_row<1, 0>(coeff, w, out);
+            break;
+          case 2:
+            ap_row<0, 1>(coeff, w, out);
+            break;
+          default:
+            ap_row<1, 1>(coeff, w, out);
+        }
       }
     }
     // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
