@@ -179,6 +179,7 @@ class Multigrid {
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   std::vector<float>& previous_;        // the correction before a cycle (SolverOptions::max_error)
+  bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;
@@ -1594,7 +1595,10 @@ void Multigrid<NC>::setup() {
   const auto changed_points =
       std::count_if(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
   const bool incremental = reuse && 4 * size_t(changed_points) < changed.size();
-  for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, incremental ? &changed : nullptr);
+  // Nothing changed (the same problem solved again): every coarse operator and prolongation is
+  // the one kept, which an incremental rebuild would leave as it is.
+  if (!(reuse && changed_points == 0))
+    for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, incremental ? &changed : nullptr);
   build_coarsest();
   // The cycles' arrays: every interior value is written before it is read, and the ghost points
   // stay 0, so arrays of the same layout are kept as they are.
@@ -1759,6 +1763,14 @@ float Multigrid<NC>::change_of_row(int y, std::vector<float>& before) const {
   for (int c = 0; c < NC; ++c) {
     const float* __restrict e = &L.e[c * n + L.at(0, y)];
     float* __restrict b = &before[c * n + L.at(0, y)];
+    if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
+#pragma omp simd reduction(max : m)
+      for (int x = 0; x < L.w; ++x) {
+        m = std::max(m, std::abs(e[x]));
+        b[x] = e[x];
+      }
+      continue;
+    }
 #pragma omp simd reduction(max : m)
     for (int x = 0; x < L.w; ++x) {
       m = std::max(m, std::abs(e[x] - b[x]));
@@ -1799,7 +1811,12 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   };
   double estimate = rel == 0 ? 0.0 : std::numeric_limits<double>::infinity();
   const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
-  if (by_error) previous_.assign(F.e.size(), 0.0f);
+  // The correction before the first cycle is 0 (F.e above): previous_ is not filled with zeros
+  // but marked as such (previous_zero_) until the first measurement has copied the correction.
+  if (by_error) {
+    if (previous_.size() != F.e.size()) previous_.assign(F.e.size(), 0.0f);
+    previous_zero_ = true;
+  }
   if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
@@ -1820,9 +1837,10 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
-      std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);
+      if (l > 0) std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);  // F.e is 0 (above)
       prolongate_add(l);
       vcycle(l, l == 0 ? &measure : nullptr);
+      if (l == 0) previous_zero_ = false;
     }
     const bool measured = count > 1;  // (one level: no finest cycle ran)
     rel = relative(measured ? sum_row_norms(row_norms, F.h) : residual_norms(0));
@@ -1832,6 +1850,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     // estimate would be 10-100x too small).
     if (by_error) {
       if (!measured) change_since(previous_);
+      previous_zero_ = false;
       st.error_estimates.push_back(estimate);
     }
     observe(nullptr, st);
@@ -1839,6 +1858,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   double last_change = 0;  // of the previous V-cycle, 0 before the first
   while (!done() && st.cycles < options_.max_cycles) {
     vcycle(0, &measure);
+    previous_zero_ = false;
     ++st.cycles;
     const double prev = rel;
     rel = relative(sum_row_norms(row_norms, F.h));
