@@ -693,15 +693,23 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
         const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
                                     {P.x1[kc - 1], 1.0f, P.x0[kc]},
                                     {P.c10[kc - 1], P.y0[kc], P.c00[kc]}};
+        // Unrolled, so that the offsets are constants and the sums stay in registers. A term of
+        // a zero weight, or of a fine point outside the level (a row of zeros), adds +-0 to a
+        // sum that starts at +0: it leaves the sum as it is, so no weight is tested.
+        static constexpr float kZeroRow[9] = {};
         double acc[5] = {0, 0, 0, 0, 0};
+#pragma GCC unroll 3
         for (int oy = -1; oy <= 1; ++oy)
+#pragma GCC unroll 3
           for (int ox = -1; ox <= 1; ++ox) {
             const int x = 2 * I + ox, y = 2 * J + oy;
             const float wk = weight[oy + 1][ox + 1];
-            if (wk == 0.0f || x < 0 || y < 0 || x >= F.w || y >= F.h) continue;
-            const float* row = &ap[(size_t(y - y_first) * F.w + x) * 9];
+            const float* row = x >= 0 && y >= 0 && x < F.w && y < F.h
+                                   ? &ap[(size_t(y - y_first) * F.w + x) * 9]
+                                   : kZeroRow;
             // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
             const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
+#pragma GCC unroll 5
             for (int m = 0; m < 5; ++m) {
               const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
               if (sx < 0 || sx > 2 || sy > 2) continue;
