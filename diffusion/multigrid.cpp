@@ -179,6 +179,7 @@ class Multigrid {
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   std::vector<float>& previous_;        // the correction before a cycle (SolverOptions::max_error)
+  bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;
@@ -201,6 +202,8 @@ class Multigrid {
   void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr,
               const RowHook* row_first = nullptr);
   void relax_row(Level& L, int y, int x_parity);
+  // Both colours of row y of a 9-point level: parity `first`, then the other (see smooth()).
+  void relax_row_pair(Level& L, int y, int first);
   void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
                     float* const out[NC], float* norms) const;
   void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
@@ -524,6 +527,31 @@ std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
   return out;
 }
 
+// Row p of A P, p = (x, y) with x % 2 == PX and y % 2 == PY (see galerkin_product): the 3x3
+// block of coarse points from base(p), as sum over the stencil's nine points q of coeff(q) times
+// the P row of q (w: the P rows of p's neighbours, row by row). The terms are added in the order
+// of q, then of q's weights, each as one fused multiply-add into its coarse point's sum, which
+// starts at +0: a zero coupling or weight adds +-0 and leaves it as it is, so no term is tested.
+// Everything is indexed by constants, so the nine sums stay in registers.
+template <int PX, int PY>
+inline void ap_row(const float (&coeff)[9], const float* const (&w)[9], float* out) {
+  float o[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+#pragma GCC unroll 3
+  for (int dy = -1; dy <= 1; ++dy)
+#pragma GCC unroll 3
+    for (int dx = -1; dx <= 1; ++dx) {
+      // ((x + dx) >> 1) - ((x - 1) >> 1) for x of parity PX, and the same for y.
+      const int ox = ((PX + dx) >> 1) - ((PX - 1) >> 1), oy = ((PY + dy) >> 1) - ((PY - 1) >> 1);
+      const float c = coeff[(dy + 1) * 3 + dx + 1];
+      const float* q = w[(dy + 1) * 3 + dx + 1];
+      o[oy * 3 + ox] += c * q[0];
+      o[oy * 3 + ox + 1] += c * q[1];
+      o[(oy + 1) * 3 + ox] += c * q[2];
+      o[(oy + 1) * 3 + ox + 1] += c * q[3];
+    }
+  for (int m = 0; m < 9; ++m) out[m] = o[m];
+}
+
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
@@ -630,19 +658,24 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
         float* out = &ap[(size_t(yy) * F.w + x) * 9];
         std::fill_n(out, 9, 0.0f);
         if (!F.alive[k]) continue;
-        const int bx = (x - 1) >> 1, by = (y - 1) >> 1;
         const Stencil st = stencil_at(F, k);
         const float coeff[9] = {-st.nw, -st.n, -st.ne, -st.w, st.d, -st.e, -st.sw, -st.s, -st.se};
+        const float* w[9];
         for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const float c = coeff[(dy + 1) * 3 + dx + 1];
-            if (c == 0.0f) continue;
-            const float* w = pw_at(x + dx, y + dy);
-            const int ox = ((x + dx) >> 1) - bx, oy = ((y + dy) >> 1) - by;
-            for (int j = 0; j < 2; ++j)
-              for (int i = 0; i < 2; ++i)
-                if (w[j * 2 + i] != 0.0f) out[(oy + j) * 3 + ox + i] += c * w[j * 2 + i];
-          }
+          for (int dx = -1; dx <= 1; ++dx) w[(dy + 1) * 3 + dx + 1] = pw_at(x + dx, y + dy);
+        switch ((x & 1) | (y & 1) << 1) {
+          case 0:
+            ap_row<0, 0>(coeff, w, out);
+            break;
+          case 1:
+            ap_row<1, 0>(coeff, w, out);
+            break;
+          case 2:
+            ap_row<0, 1>(coeff, w, out);
+            break;
+          default:
+            ap_row<1, 1>(coeff, w, out);
+        }
       }
     }
     // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
@@ -660,15 +693,23 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
         const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
                                     {P.x1[kc - 1], 1.0f, P.x0[kc]},
                                     {P.c10[kc - 1], P.y0[kc], P.c00[kc]}};
+        // Unrolled, so that the offsets are constants and the sums stay in registers. A term of
+        // a zero weight, or of a fine point outside the level (a row of zeros), adds +-0 to a
+        // sum that starts at +0: it leaves the sum as it is, so no weight is tested.
+        static constexpr float kZeroRow[9] = {};
         double acc[5] = {0, 0, 0, 0, 0};
+#pragma GCC unroll 3
         for (int oy = -1; oy <= 1; ++oy)
+#pragma GCC unroll 3
           for (int ox = -1; ox <= 1; ++ox) {
             const int x = 2 * I + ox, y = 2 * J + oy;
             const float wk = weight[oy + 1][ox + 1];
-            if (wk == 0.0f || x < 0 || y < 0 || x >= F.w || y >= F.h) continue;
-            const float* row = &ap[(size_t(y - y_first) * F.w + x) * 9];
+            const float* row = x >= 0 && y >= 0 && x < F.w && y < F.h
+                                   ? &ap[(size_t(y - y_first) * F.w + x) * 9]
+                                   : kZeroRow;
             // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
             const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
+#pragma GCC unroll 5
             for (int m = 0; m < 5; ++m) {
               const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
               if (sx < 0 || sx > 2 || sy > 2) continue;
@@ -866,6 +907,13 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
         finest ? RowCouplings(nullptr, nullptr, nullptr, nullptr, s) : RowCouplings(L, row);
     const float* id = finest ? nullptr : &L.inv_diag[row];
     const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
+    // A block's values are stored after the next block's loads: those overlap the block's
+    // sixteen points (its last as a west neighbour), and a load that overlaps a store still in
+    // flight waits for it. What they read there is of the other parity, unchanged either way.
+    __m512 pending[NC];
+    for (__m512& v : pending) v = _mm512_setzero_ps();
+    __mmask16 pending_lanes = 0;
+    int pending_x = 0;
     for (int x = 0; x < L.w; x += 16) {
       const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
       const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
@@ -879,6 +927,7 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
         if (a.nine_point)
           pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       }
+      __m512 now[NC];
       for (int c = 0; c < NC; ++c) {
         const float* ec = e[c];
         __m512 t = _mm512_mul_ps(pw, load(ec - 1));
@@ -892,10 +941,14 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
           u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
           t = _mm512_add_ps(t, u);
         }
-        _mm512_mask_storeu_ps(e[c] + x, in & parity,
-                              _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+        now[c] = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
       }
+      for (int c = 0; c < NC; ++c)
+        _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]), pending[c] = now[c];
+      pending_lanes = in & parity;
+      pending_x = x;
     }
+    for (int c = 0; c < NC; ++c) _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]);
   }
   return;
 #endif
@@ -925,6 +978,101 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   }
 }
 
+// Row y of a 9-point level relaxed at parity `first`, then at the other parity: what
+// relax_row(L, y, first) and relax_row(L, y, 1 - first) compute, to the bit. The AVX-512 path does
+// both in one pass over the row, a block of sixteen points behind: block i's first parity, then
+// block i-1's second, whose west and east neighbours (of the first parity) are the values just
+// computed, taken from registers (no load waits for a store), and the same sixteen points'
+// diagonal-neighbour sum (rows y-1 and y+1, which neither parity changes) computed once for both.
+// Each point's operations are relax_row's in its order.
+template <int NC>
+void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  const size_t n = L.padded(), row = L.at(0, y);
+  const int s = L.stride, w = L.w;
+  float* __restrict e[NC];
+  const float* __restrict b[NC];
+  for (int c = 0; c < NC; ++c) {
+    e[c] = &L.e[c * n + row];
+    b[c] = &L.rhs[c * n + row];
+  }
+  const RowCouplings a(L, row);
+  const float* id = &L.inv_diag[row];
+  const __mmask16 second = first ? 0x5555 : 0xAAAA;
+  const auto lanes = [&](int x) {
+    return w - x >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (w - x)) - 1);
+  };
+  // Per channel: the first parity's values of the block before (`last`) and of the one before
+  // that (`before`; its lane 15 is the west neighbour of the block's lane 0), and the block
+  // before's diagonal-neighbour sum. Outside the row: the ghost values.
+  __m512 last[NC], before[NC], u_last[NC];
+  for (int c = 0; c < NC; ++c) {
+    last[c] = _mm512_set1_ps(e[c][-1]);
+    before[c] = last[c];
+    u_last[c] = _mm512_setzero_ps();
+  }
+  for (int x = 0; x < w + 16; x += 16) {
+    __m512 now[NC], u_now[NC];
+    if (x < w) {
+      // The first parity of block x, as relax_row computes it (every lane; the first parity's
+      // lanes are kept).
+      const __mmask16 in = lanes(x);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+      const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+      const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+        u_now[c] = u;
+        t = _mm512_add_ps(t, u);
+        // Lanes outside the row: the ghost value (lane w - x is the east neighbour of w - 1).
+        now[c] = _mm512_mask_mov_ps(_mm512_set1_ps(ec[w]), in,
+                                    _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d));
+      }
+    } else {
+      for (int c = 0; c < NC; ++c) now[c] = _mm512_set1_ps(e[c][w]), u_now[c] = _mm512_setzero_ps();
+    }
+    if (x > 0) {
+      // The second parity of block x - 16: its west and east neighbours are of the first parity,
+      // in `last` and its neighbours in registers. Stored with the block's first parity.
+      const int xb = x - 16;
+      const __mmask16 in = lanes(xb);
+      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + xb); };
+      const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
+      for (int c = 0; c < NC; ++c) {
+        const float* ec = e[c];
+        const __m512 west = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(last[c]), _mm512_castps_si512(before[c]), 15));
+        const __m512 east = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(now[c]), _mm512_castps_si512(last[c]), 1));
+        __m512 t = _mm512_mul_ps(pw, west);
+        t = _mm512_fmadd_ps(pe, east, t);
+        t = _mm512_fmadd_ps(ps, load(ec + s), t);
+        t = _mm512_fmadd_ps(pn, load(ec - s), t);
+        t = _mm512_add_ps(t, u_last[c]);
+        const __m512 r = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
+        _mm512_mask_storeu_ps(e[c] + xb, in, _mm512_mask_mov_ps(last[c], second, r));
+      }
+    }
+    for (int c = 0; c < NC; ++c) {
+      before[c] = last[c];
+      last[c] = now[c];
+      u_last[c] = u_now[c];
+    }
+  }
+#else
+  relax_row(L, y, first);
+  relax_row(L, y, 1 - first);
+#endif
+}
+
 // Gauss-Seidel in an order-independent colouring: red-black on the 5-point finest level, four
 // colours (x parity, y parity) on the 9-point levels. Each sweep has two stages, A and B:
 // red then black, or even rows (colours 0, 1) then odd rows (colours 2, 3); reversed for
@@ -951,8 +1099,7 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
     }
     const bool first_rows = reverse ? (y & 1) : !(y & 1);
     if (first_rows != first) return;
-    relax_row(L, y, reverse ? 1 : 0);
-    relax_row(L, y, reverse ? 0 : 1);
+    relax_row_pair(L, y, reverse ? 1 : 0);
   };
   if (stages == 0) {
     if (row_first)
@@ -1456,7 +1603,10 @@ void Multigrid<NC>::setup() {
   const auto changed_points =
       std::count_if(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
   const bool incremental = reuse && 4 * size_t(changed_points) < changed.size();
-  for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, incremental ? &changed : nullptr);
+  // Nothing changed (the same problem solved again): every coarse operator and prolongation is
+  // the one kept, which an incremental rebuild would leave as it is.
+  if (!(reuse && changed_points == 0))
+    for (int l = 0; l + 1 < count; ++l) changed = build_coarse(l, incremental ? &changed : nullptr);
   build_coarsest();
   // The cycles' arrays: every interior value is written before it is read, and the ghost points
   // stay 0, so arrays of the same layout are kept as they are.
@@ -1621,6 +1771,14 @@ float Multigrid<NC>::change_of_row(int y, std::vector<float>& before) const {
   for (int c = 0; c < NC; ++c) {
     const float* __restrict e = &L.e[c * n + L.at(0, y)];
     float* __restrict b = &before[c * n + L.at(0, y)];
+    if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
+#pragma omp simd reduction(max : m)
+      for (int x = 0; x < L.w; ++x) {
+        m = std::max(m, std::abs(e[x]));
+        b[x] = e[x];
+      }
+      continue;
+    }
 #pragma omp simd reduction(max : m)
     for (int x = 0; x < L.w; ++x) {
       m = std::max(m, std::abs(e[x] - b[x]));
@@ -1661,7 +1819,12 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   };
   double estimate = rel == 0 ? 0.0 : std::numeric_limits<double>::infinity();
   const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
-  if (by_error) previous_.assign(F.e.size(), 0.0f);
+  // The correction before the first cycle is 0 (F.e above): previous_ is not filled with zeros
+  // but marked as such (previous_zero_) until the first measurement has copied the correction.
+  if (by_error) {
+    if (previous_.size() != F.e.size()) previous_.assign(F.e.size(), 0.0f);
+    previous_zero_ = true;
+  }
   if (!done() && options_.full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
@@ -1682,9 +1845,10 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     std::fill(levels_.back().e.begin(), levels_.back().e.end(), 0.0f);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
-      std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);
+      if (l > 0) std::fill(levels_[l].e.begin(), levels_[l].e.end(), 0.0f);  // F.e is 0 (above)
       prolongate_add(l);
       vcycle(l, l == 0 ? &measure : nullptr);
+      if (l == 0) previous_zero_ = false;
     }
     const bool measured = count > 1;  // (one level: no finest cycle ran)
     rel = relative(measured ? sum_row_norms(row_norms, F.h) : residual_norms(0));
@@ -1694,6 +1858,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     // estimate would be 10-100x too small).
     if (by_error) {
       if (!measured) change_since(previous_);
+      previous_zero_ = false;
       st.error_estimates.push_back(estimate);
     }
     observe(nullptr, st);
@@ -1701,6 +1866,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   double last_change = 0;  // of the previous V-cycle, 0 before the first
   while (!done() && st.cycles < options_.max_cycles) {
     vcycle(0, &measure);
+    previous_zero_ = false;
     ++st.cycles;
     const double prev = rel;
     rel = relative(sum_row_norms(row_norms, F.h));
