@@ -853,6 +853,25 @@ inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __m
     k.d = _mm512_mask_loadu_ps(k.d, anchored, &(inverse ? L.inv_diag : L.diag)[row + x]);
   return k;
 }
+
+// The stencil's sums at sixteen points of channel row `ec` (stride s), in the scalar loops' order:
+// the four edge neighbours', and the four corner neighbours' of the 9-point levels.
+template <class Load>
+inline __m512 edge_sum(__m512 pw, __m512 pe, __m512 ps, __m512 pn, const float* ec, int s,
+                       const Load& load) {
+  __m512 t = _mm512_mul_ps(pw, load(ec - 1));
+  t = _mm512_fmadd_ps(pe, load(ec + 1), t);
+  t = _mm512_fmadd_ps(ps, load(ec + s), t);
+  return _mm512_fmadd_ps(pn, load(ec - s), t);
+}
+template <class Load>
+inline __m512 corner_sum(__m512 pnw, __m512 pse, __m512 psw, __m512 pne, const float* ec, int s,
+                         const Load& load) {
+  __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
+  u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
+  u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
+  return _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+}
 #endif
 
 // The couplings of the row starting at `row` and its diagonal (or its inverse): a coarse level's
@@ -930,17 +949,8 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
       __m512 now[NC];
       for (int c = 0; c < NC; ++c) {
         const float* ec = e[c];
-        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-        t = _mm512_fmadd_ps(ps, load(ec + s), t);
-        t = _mm512_fmadd_ps(pn, load(ec - s), t);
-        if (a.nine_point) {
-          __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
-          u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
-          u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
-          u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
-          t = _mm512_add_ps(t, u);
-        }
+        __m512 t = edge_sum(pw, pe, ps, pn, ec, s, load);
+        if (a.nine_point) t = _mm512_add_ps(t, corner_sum(pnw, pse, psw, pne, ec, s, load));
         now[c] = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
       }
       for (int c = 0; c < NC; ++c)
@@ -1022,14 +1032,8 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
       const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       for (int c = 0; c < NC; ++c) {
         const float* ec = e[c];
-        __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-        t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-        t = _mm512_fmadd_ps(ps, load(ec + s), t);
-        t = _mm512_fmadd_ps(pn, load(ec - s), t);
-        __m512 u = _mm512_mul_ps(pnw, load(ec - s - 1));
-        u = _mm512_fmadd_ps(pse, load(ec + s + 1), u);
-        u = _mm512_fmadd_ps(psw, load(ec + s - 1), u);
-        u = _mm512_fmadd_ps(pne, load(ec - s + 1), u);
+        __m512 t = edge_sum(pw, pe, ps, pn, ec, s, load);
+        const __m512 u = corner_sum(pnw, pse, psw, pne, ec, s, load);
         u_now[c] = u;
         t = _mm512_add_ps(t, u);
         // Lanes outside the row: the ghost value (lane w - x is the east neighbour of w - 1).
