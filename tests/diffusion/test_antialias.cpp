@@ -1,6 +1,7 @@
 // antialias: pixels that sharp curves cross mix both sides' solved colours by the area each side
 // covers, colours never cross a curve, pixels no curve crosses keep their solved value, and a
 // region leaves the outside out.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -130,6 +131,40 @@ TEST_CASE("hidden parts of a curve do not anti-alias", "[antialias]") {
   CHECK(red(im, 10, 4) == Approx(0.25 * white_side + 0.75 * black_side).margin(0.01));
   CHECK(red(sharp, 9, 4) - red(sharp, 10, 4) > 0.9);
   CHECK(red(im, 10, 28) == red(sharp, 10, 28));  // no curve there: left as solved
+}
+
+TEST_CASE("a source of the solve's window alone gives the whole image's pixels", "[antialias]") {
+  // A slanted edge in the middle of a 32^2 image; the solve's colours kept for a window around
+  // it only (as the renderer keeps them) stand for 0 outside it.
+  const Drawing d = drawing(32, {line({12.3, -1}, {17.6, 33}, kWhite, kBlack)});
+  const Image sharp = render_drawing(d, 32, 32, {}, nullptr, false);
+  std::vector<float> whole = sharp.planes;
+  const AntialiasStats st = antialias(d.curves, 32, 32, whole);
+  const auto window_source = [&](const PixelWindow& w) {
+    std::vector<float> planes(3 * w.pixel_count());
+    for (int c = 0; c < 3; ++c)
+      for (int y = 0; y < w.height; ++y)
+        for (int x = 0; x < w.width; ++x)
+          planes[c * w.pixel_count() + size_t(y) * w.width + x] =
+              sharp.planes[c * 32 * 32 + size_t(w.y + y) * 32 + w.x + x];
+    return planes;
+  };
+  // The edge's pixels and their neighbours lie in columns 10-19: a window of them is enough.
+  const PixelWindow around{8, 0, 14, 32};
+  std::vector<float> windowed = sharp.planes;
+  CHECK(antialias(d.curves, 32, 32, window_source(around), around, windowed).pixels == st.pixels);
+  CHECK(windowed == whole);
+  // A window that leaves out the white side's centres reads 0 there: the edge's pixels change.
+  const PixelWindow right_of_edge{16, 0, 16, 32};
+  std::vector<float> cut = sharp.planes;
+  antialias(d.curves, 32, 32, window_source(right_of_edge), right_of_edge, cut);
+  float largest = 0;
+  for (size_t i = 0; i < cut.size(); ++i) largest = std::max(largest, std::abs(cut[i] - whole[i]));
+  CHECK(largest > 0.3f);
+  // A window reaching outside the image is refused.
+  CHECK_THROWS_AS(
+      antialias(d.curves, 32, 32, window_source(around), PixelWindow{20, 0, 14, 32}, windowed),
+      std::invalid_argument);
 }
 
 TEST_CASE("antialias refuses mismatched sizes", "[antialias]") {
