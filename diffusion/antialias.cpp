@@ -230,9 +230,10 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
                          const AntialiasOptions& options) {
   const size_t n_pixels = size_t(width) * size_t(height);
   const PixelWindow& sw = source_window;
-  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels ||
-      source.size() < 3 * sw.pixel_count() || sw.x < 0 || sw.y < 0 || sw.width < 0 ||
-      sw.height < 0 || sw.x + sw.width > width || sw.y + sw.height > height)
+  const size_t n_source = sw.pixel_count();
+  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels || source.size() < 3 * n_source ||
+      sw.x < 0 || sw.y < 0 || sw.width < 0 || sw.height < 0 || sw.x + sw.width > width ||
+      sw.y + sw.height > height)
     throw std::invalid_argument("antialias: image planes do not match the size");
   if (region && region->centres.size() != n_pixels)
     throw std::invalid_argument("antialias: region does not match the image size");
@@ -309,7 +310,6 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
         // moved towards the colour of the nearest curve as q is nearer to it than the centre is
         // (the linear profile that the solve's boundary rule assumes along a link).
-        const size_t n_source = sw.pixel_count();
         const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, int cx, int cy) {
           const size_t c = size_t(cy) * width + cx;
           const int sx = cx - sw.x, sy = cy - sw.y;

@@ -105,8 +105,9 @@ void render_shading(FrameResult& r, const sim::ProjectedFrame& frame, const Fram
 
 // render_shading in its two halves: render_solve is what the next frame's warm start depends on
 // (the rasterized constraints, the solve, the blur map's solve; r.solution is the warm start);
-// render_finish depends on this frame alone (anti-aliasing from the plain solve `solved`, which
-// is r.solution or the caller's copy of it, and the re-blur), so frames may finish in parallel.
+// render_finish depends on this frame alone (anti-aliasing from the plain solve `solved`:
+// r.solution, or the FrameSolution the caller moved it into to share it with the next frame's warm
+// start; and the re-blur), so frames may finish in parallel.
 void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameSetup& setup,
                   const FrameSolution* warm_start, const sim::ProjectedFrame* neighbour = nullptr);
 void render_finish(FrameResult& r, const FrameSetup& setup, const FrameSolution& solved);
