@@ -92,25 +92,23 @@ double analytic_area(const Camera& cam, const HeadPose& pose, const Vector3d& ra
          std::pow(std::abs(C.topLeftCorner<2, 2>().determinant()), 1.5);
 }
 
-// Distance along the ray from `eye` in direction `dir` to the nearest triangle of `s` (Moller-
-// Trumbore), or a huge value.
-double ray_hit(const BodySurface& s, const Vector3d& eye, const Vector3d& dir) {
-  double nearest = 1e9;
-  for (const Eigen::Vector3i& t : s.triangles) {
-    const Vector3d a = s.vertices[t[0]], e1 = s.vertices[t[1]] - a, e2 = s.vertices[t[2]] - a;
-    const Vector3d p = dir.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-15) continue;
-    const Vector3d o = eye - a;
-    const double u = o.dot(p) / det;
-    if (u < 0 || u > 1) continue;
-    const Vector3d q = o.cross(e1);
-    const double v = dir.dot(q) / det;
-    if (v < 0 || u + v > 1) continue;
-    const double h = e2.dot(q) / det;
-    if (h > 0) nearest = std::min(nearest, h);
-  }
-  return nearest;
+// Distance along the ray from `eye` in direction `dir` to triangle t of `s` (Moller-Trumbore),
+// or a huge value when the ray misses it.
+double ray_hit(const BodySurface& s, const Eigen::Vector3i& t, const Vector3d& eye,
+               const Vector3d& dir) {
+  constexpr double kMiss = 1e9;
+  const Vector3d a = s.vertices[t[0]], e1 = s.vertices[t[1]] - a, e2 = s.vertices[t[2]] - a;
+  const Vector3d p = dir.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-15) return kMiss;
+  const Vector3d o = eye - a;
+  const double u = o.dot(p) / det;
+  if (u < 0 || u > 1) return kMiss;
+  const Vector3d q = o.cross(e1);
+  const double v = dir.dot(q) / det;
+  if (v < 0 || u + v > 1) return kMiss;
+  const double h = e2.dot(q) / det;
+  return h > 0 ? h : kMiss;
 }
 
 }  // namespace
@@ -246,42 +244,63 @@ TEST_CASE(
     CHECK(front);
 
     // Every pixel centre: the part the painter leaves on top (the last surface whose visible
-    // part covers it) against the part of the nearest surface along the pixel's ray.
-    int covered = 0, agree = 0, coverage_mismatch = 0;
-    for (int y = 0; y < cp.height; ++y)
-      for (int x = 0; x < cp.width; ++x) {
-        const Vector2d q(x + 0.5, y + 0.5);
-        int painted = -1;
-        for (std::size_t i = 0; i < body.surfaces.size(); ++i) {
-          const ProjectedSurface& s = body.surfaces[i];
-          for (const Eigen::Vector3i& t : s.triangles) {
-            Vector3d w;
-            if (!barycentric(s, t, q, &w)) continue;
-            const double clear = std::isinf(s.clearance[t[0]])
-                                     ? 1.0
-                                     : w[0] * s.clearance[t[0]] + w[1] * s.clearance[t[1]] +
-                                           w[2] * s.clearance[t[2]];
-            if (clear > 0) painted = s.part;
-          }
-        }
-        const Vector3d dir = (cam.forward + (q.x() - 0.5 * cp.width) / cam.focal_px * cam.right -
-                              (q.y() - 0.5 * cp.height) / cam.focal_px * cam.up)
-                                 .normalized();
-        double nearest = 1e9;
-        int hit = -1;
-        for (const BodySurface& s : world) {
-          const double h = ray_hit(s, cam.eye, dir);
-          if (h < nearest) {
-            nearest = h;
-            hit = s.part;
-          }
-        }
-        if ((painted >= 0) != (hit >= 0)) ++coverage_mismatch;
-        if (painted >= 0 && hit >= 0) {
-          ++covered;
-          agree += painted == hit;
-        }
+    // part covers it) against the part of the nearest surface along the pixel's ray. Each
+    // triangle visits only the pixels of its bounding box (one pixel wider for the world's
+    // triangles, whose box is that of their projected corners).
+    const int w = cp.width, h = cp.height;
+    std::vector<int> painted(size_t(w) * h, -1), hit(size_t(w) * h, -1);
+    std::vector<double> nearest(size_t(w) * h, 1e9);
+    const auto for_pixels_in_box = [&](Eigen::AlignedBox2d box, int margin, const auto& visit) {
+      const int x0 = std::max(0, int(std::floor(box.min().x())) - margin);
+      const int y0 = std::max(0, int(std::floor(box.min().y())) - margin);
+      const int x1 = std::min(w - 1, int(std::ceil(box.max().x())) + margin);
+      const int y1 = std::min(h - 1, int(std::ceil(box.max().y())) + margin);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) visit(x, y, size_t(y) * w + x);
+    };
+    for (const ProjectedSurface& s : body.surfaces)
+      for (const Eigen::Vector3i& t : s.triangles) {
+        Eigen::AlignedBox2d box;
+        for (int k = 0; k < 3; ++k) box.extend(s.pixel[t[k]]);
+        for_pixels_in_box(box, 0, [&](int x, int y, size_t i) {
+          Vector3d b;
+          if (!barycentric(s, t, Vector2d(x + 0.5, y + 0.5), &b)) return;
+          const double clear =
+              std::isinf(s.clearance[t[0]])
+                  ? 1.0
+                  : b[0] * s.clearance[t[0]] + b[1] * s.clearance[t[1]] + b[2] * s.clearance[t[2]];
+          if (clear > 0) painted[i] = s.part;
+        });
       }
+    for (const BodySurface& s : world)
+      for (const Eigen::Vector3i& t : s.triangles) {
+        Eigen::AlignedBox2d box;
+        bool in_front = true;
+        for (int k = 0; k < 3; ++k) {
+          box.extend(cam.project(s.vertices[t[k]]));
+          in_front = in_front && cam.forward.dot(s.vertices[t[k]] - cam.eye) > 0;
+        }
+        if (!in_front) box = Eigen::AlignedBox2d(Vector2d(0, 0), Vector2d(w, h));
+        for_pixels_in_box(box, 1, [&](int x, int y, size_t i) {
+          const Vector2d q(x + 0.5, y + 0.5);
+          const Vector3d dir = (cam.forward + (q.x() - 0.5 * w) / cam.focal_px * cam.right -
+                                (q.y() - 0.5 * h) / cam.focal_px * cam.up)
+                                   .normalized();
+          const double d = ray_hit(s, t, cam.eye, dir);
+          if (d < nearest[i]) {
+            nearest[i] = d;
+            hit[i] = s.part;
+          }
+        });
+      }
+    int covered = 0, agree = 0, coverage_mismatch = 0;
+    for (size_t i = 0; i < painted.size(); ++i) {
+      if ((painted[i] >= 0) != (hit[i] >= 0)) ++coverage_mismatch;
+      if (painted[i] >= 0 && hit[i] >= 0) {
+        ++covered;
+        agree += painted[i] == hit[i];
+      }
+    }
     std::printf(
         "[measured] whole surfaces painted back to front versus ray-cast depth: %d of %d pixels "
         "agree (%.2f %%), %d pixels differ in coverage\n",
