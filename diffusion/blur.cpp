@@ -1,33 +1,46 @@
-// Spatially varying Gaussian blur by interpolation between a ladder of blurs, and the blur map
-// solved alone (see blur.hpp).
+// Spatially varying Gaussian blur by interpolation between a ladder of blurs (each rung made by
+// the blur module, blur_module.hpp), and the blur map solved alone (see blur.hpp).
 #include "diffusion/blur.hpp"
+
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
+#include "diffusion/blur_module.hpp"
 #include "diffusion/rasterize.hpp"
 
 namespace wisp::diffusion {
 namespace {
 
-// `src` blurred by a Gaussian of sigma s: directly, or on a reduced image (blur.hpp) when s is
-// at least `pyramid_from`.
-cv::Mat rung(const cv::Mat& src, float s, float pyramid_from) {
-  cv::Mat out;
-  int f = 1;
-  while (s >= pyramid_from && s / (2 * f) >= 2) f *= 2;
-  if (f == 1) {
-    cv::GaussianBlur(src, out, cv::Size(0, 0), s, s, cv::BORDER_REFLECT);
-    return out;
-  }
-  const double sigma_small = std::sqrt(double(s) * s / (double(f) * f) - 0.25);
-  cv::Mat small;
-  cv::resize(src, small, cv::Size((src.cols + f - 1) / f, (src.rows + f - 1) / f), 0, 0,
-             cv::INTER_AREA);
-  cv::GaussianBlur(small, small, cv::Size(0, 0), sigma_small, sigma_small, cv::BORDER_REFLECT);
-  cv::resize(small, out, src.size(), 0, 0, cv::INTER_LINEAR);
-  return out;
+using RungFunction = decltype(&wisp_blur_rung);
+
+// The blur module, loaded once per process on first use from lib/wisp/ beside the executable's
+// bin/ folder (the layout of io/install_layout.hpp, which diffusion/ does not include). Throws
+// when it is missing or from another build.
+RungFunction blur_rung() {
+  static const std::pair<RungFunction, std::string> loaded =
+      []() -> std::pair<RungFunction, std::string> {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path path =
+        (exe.parent_path().parent_path() / "lib" / "wisp" / "wisp-blur.so").lexically_normal();
+    void* handle = ec ? nullptr : dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = ec ? nullptr : dlerror();
+      return {nullptr, std::string("cannot load the blur module (") + (why ? why : path.c_str()) +
+                           "); build or install wisp whole"};
+    }
+    auto f = reinterpret_cast<RungFunction>(dlsym(handle, "wisp_blur_rung"));
+    if (!f) return {nullptr, "the blur module " + path.string() + " lacks wisp_blur_rung"};
+    return {f, ""};
+  }();
+  if (!loaded.first) throw std::runtime_error(loaded.second);
+  return loaded.first;
 }
 
 }  // namespace
@@ -41,19 +54,25 @@ std::vector<float> spatially_varying_blur(const std::vector<float>& planes, int 
   std::vector<float> rungs = {0.0f, 0.5f};
   while (rungs.back() < largest) rungs.push_back(rungs.back() * 2);
 
+  const RungFunction rung = blur_rung();
   std::vector<float> out(planes.size());
+  std::vector<std::vector<float>> blurred(rungs.size() - 1, std::vector<float>(n));
   for (int c = 0; c < channels; ++c) {
-    const cv::Mat src(height, width, CV_32F, const_cast<float*>(&planes[c * n]));
-    std::vector<cv::Mat> ladder(rungs.size());
-    ladder[0] = src;
-    for (size_t k = 1; k < rungs.size(); ++k) ladder[k] = rung(src, rungs[k], options.pyramid_from);
+    const float* src = &planes[c * n];
+    std::vector<const float*> ladder = {src};
+    for (size_t k = 1; k < rungs.size(); ++k) {
+      if (!rung(src, width, height, rungs[k], options.pyramid_from, blurred[k - 1].data()))
+        throw std::runtime_error("blur: OpenCV could not blur a " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " image");
+      ladder.push_back(blurred[k - 1].data());
+    }
     float* dst = &out[c * n];
     for (size_t i = 0; i < n; ++i) {
       const float s = std::clamp(sigma[i], 0.0f, rungs.back());
       size_t k = 0;
       while (k + 2 < rungs.size() && rungs[k + 1] < s) ++k;
       const float f = (s - rungs[k]) / (rungs[k + 1] - rungs[k]);
-      dst[i] = (1 - f) * ladder[k].ptr<float>()[i] + f * ladder[k + 1].ptr<float>()[i];
+      dst[i] = (1 - f) * ladder[k][i] + f * ladder[k + 1][i];
     }
   }
   return out;

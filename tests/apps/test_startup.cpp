@@ -1,6 +1,7 @@
 // Start-up: each command loads the shared libraries it uses and no others (docs/performance.md,
 // "Start-up"). The dynamic loader itself reports what it maps (LD_DEBUG=files, on stderr), for
 // the dispatcher `wisp` and the wisp-<command> it runs alike.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <regex>
@@ -58,6 +59,46 @@ TEST_CASE("wisp diffuse loads neither video, Bullet, Cairo nor CGAL's number lib
   CHECK(any_of(libraries, {"cairo", "libgmp", "libmpfr"}) == "");
   // 24 on Debian 12 (OpenCV's core brings X11, GL dispatch and LAPACK); 250 before the split.
   CHECK(libraries.size() <= 30);
+  // circle.xml is blurred: the blur module brought OpenCV.
+  CHECK(libraries.count("wisp-blur.so") == 1);
+}
+
+TEST_CASE("wisp diffuse loads OpenCV only for a drawing with blur", "[cli][startup]") {
+  const std::string out = fresh_folder("startup_sharp");
+  std::string output;
+  const auto sharp =
+      loaded_libraries(kBin + "/wisp diffuse " WISP_SOURCE_DIR "/data/drawings/crossing.xml -o " +
+                           out + "/crossing.png --size 48x48",
+                       &output);
+  INFO(output);
+  REQUIRE(sharp.count("libpng16.so.16") == 1);  // the command ran
+  CHECK(any_of(sharp, {"opencv", "wisp-blur", "libX11", "lapack"}) == "");
+  CHECK(sharp.size() <= 12);  // 11 on Debian 12
+  const auto help = loaded_libraries(kBin + "/wisp diffuse --help", &output);
+  CHECK(any_of(help, {"opencv", "wisp-blur"}) == "");
+}
+
+TEST_CASE("a blurred drawing without the blur module is refused with one line naming it",
+          "[cli][startup]") {
+  // The command executable alone, without lib/wisp/ beside its bin/ folder.
+  const std::string root = fresh_folder("startup_no_blur");
+  std::filesystem::create_directories(root + "/bin");
+  std::filesystem::copy_file(kBin + "/wisp-diffuse", root + "/bin/wisp-diffuse");
+  const std::string png = root + "/circle.png";
+  const auto blurred = run_command(
+      root + "/bin/wisp-diffuse diffuse " WISP_SOURCE_DIR "/data/drawings/circle.xml -o " + png +
+      " --size 48x48");
+  INFO(blurred.output);
+  CHECK(blurred.exit_code != 0);
+  CHECK(blurred.output.find("wisp-blur.so") != std::string::npos);
+  CHECK(blurred.output.find("build or install wisp whole") != std::string::npos);
+  CHECK(std::count(blurred.output.begin(), blurred.output.end(), '\n') == 1);
+  CHECK(!std::filesystem::exists(png));
+  // A sharp drawing needs no module.
+  CHECK(run_command(root +
+                    "/bin/wisp-diffuse diffuse " WISP_SOURCE_DIR "/data/drawings/crossing.xml -o " +
+                    png + " --size 48x48")
+            .exit_code == 0);
 }
 
 TEST_CASE("wisp --help and wisp render --help load no stage library, video only when written",
