@@ -220,8 +220,8 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   const size_t n_pixels = size_t(width) * size_t(height);
   if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
     throw std::invalid_argument("antialias: image planes do not match the size");
-  const std::vector<float> source(planes.begin(), planes.begin() + 3 * n_pixels);
-  return antialias(curves, width, height, source, {0, 0, width, height}, planes, region, options);
+  // The general form reads every colour before it writes any (below), so the planes can be both.
+  return antialias(curves, width, height, planes, {0, 0, width, height}, planes, region, options);
 }
 
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
@@ -246,7 +246,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   if (segments.empty()) return stats;
   const SegmentBins bins = bin_segments(segments, width, height);
   const std::vector<Segment> edges = region ? ring_segments(region->rings) : std::vector<Segment>();
-  const SegmentBins edge_bins = bin_segments(edges, width, height);
+  const SegmentBins edge_bins = region ? bin_segments(edges, width, height) : SegmentBins();
   // Whether sub-sample q of pixel p lies in the region: its centre's side, flipped by every ring
   // edge between q and the centre (both in p, so only the edges binned in p can cross).
   const auto inside = [&](const Vector2d& q, size_t p, const Vector2d& centre) {
@@ -258,6 +258,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   const int n = options.samples;
   const auto orders = neighbour_orders(n);
 
+  // Each row's new colours, written once every row has been read: `source` may be `planes`.
+  struct Resampled {
+    size_t pixel;
+    Color colour;
+  };
+  std::vector<std::vector<Resampled>> new_colours(static_cast<size_t>(height));
   std::vector<long> resampled(size_t(height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<int> local;
@@ -359,9 +365,14 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         }
         ++resampled[y];
         if (count == 0) continue;
-        for (int ch = 0; ch < 3; ++ch) planes[ch * n_pixels + p] = sum[ch] / count;
+        Color mean;
+        for (int ch = 0; ch < 3; ++ch) mean[ch] = sum[ch] / count;
+        new_colours[size_t(y)].push_back({p, mean});
       }
   });
+  for (const std::vector<Resampled>& row : new_colours)
+    for (const Resampled& r : row)
+      for (int ch = 0; ch < 3; ++ch) planes[ch * n_pixels + r.pixel] = r.colour[ch];
   for (long r : resampled) stats.pixels += r;
   return stats;
 }
