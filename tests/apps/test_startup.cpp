@@ -39,21 +39,27 @@ std::string any_of(const std::set<std::string>& libraries,
   return "";
 }
 
+// The libraries `wisp diffuse` maps for data/drawings/<name>.xml at 48x48, and its output.
+std::set<std::string> diffuse_libraries(const std::string& name, std::string* output) {
+  const std::string out = fresh_folder("startup_" + name);
+  const auto libraries =
+      loaded_libraries(kBin + "/wisp diffuse " WISP_SOURCE_DIR "/data/drawings/" + name +
+                           ".xml -o " + out + "/" + name + ".png --size 48x48",
+                       output);
+  CHECK(std::filesystem::exists(out + "/" + name + ".png"));
+  return libraries;
+}
+
 }  // namespace
 
 TEST_CASE("wisp diffuse loads neither video, Bullet, Cairo nor CGAL's number libraries",
           "[cli][startup]") {
-  const std::string out = fresh_folder("startup");
   std::string output;
-  const auto libraries =
-      loaded_libraries(kBin + "/wisp diffuse " WISP_SOURCE_DIR "/data/drawings/circle.xml -o " +
-                           out + "/circle.png --size 48x48",
-                       &output);
+  const auto libraries = diffuse_libraries("circle", &output);
   INFO(output);
   // The report covers the command that did the work (wisp-diffuse, which the dispatcher runs under
   // its own name): its PNG library was loaded.
   REQUIRE(libraries.count("libpng16.so.16") == 1);
-  CHECK(std::filesystem::exists(out + "/circle.png"));
   CHECK(any_of(libraries, {"videoio", "imgcodecs", "avcodec", "gst", "wisp-video"}) == "");
   CHECK(any_of(libraries, {"Bullet", "LinearMath"}) == "");
   CHECK(any_of(libraries, {"cairo", "libgmp", "libmpfr"}) == "");
@@ -64,12 +70,8 @@ TEST_CASE("wisp diffuse loads neither video, Bullet, Cairo nor CGAL's number lib
 }
 
 TEST_CASE("wisp diffuse loads OpenCV only for a drawing with blur", "[cli][startup]") {
-  const std::string out = fresh_folder("startup_sharp");
   std::string output;
-  const auto sharp =
-      loaded_libraries(kBin + "/wisp diffuse " WISP_SOURCE_DIR "/data/drawings/crossing.xml -o " +
-                           out + "/crossing.png --size 48x48",
-                       &output);
+  const auto sharp = diffuse_libraries("crossing", &output);
   INFO(output);
   REQUIRE(sharp.count("libpng16.so.16") == 1);  // the command ran
   CHECK(any_of(sharp, {"opencv", "wisp-blur", "libX11", "lapack"}) == "");
