@@ -2,13 +2,18 @@
 #include "run_command.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
-#include <catch2/catch.hpp>
-#include <map>
-
+#include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <vector>
 
 namespace wisp::test {
 
@@ -24,16 +29,58 @@ CommandResult run_command(const std::string& command) {
   return r;
 }
 
+namespace {
+
+// FNV-1a over `text`, continuing from `h`.
+std::uint64_t hash(const std::string& text, std::uint64_t h = 1469598103934665603ull) {
+  for (const unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+// What the simulation of `scene` depends on, as text: the scene, every file under data/ (name,
+// size, time) and the simulator.
+std::string simulation_inputs(const std::string& scene) {
+  namespace fs = std::filesystem;
+  const auto stamp = [](const fs::path& f) {
+    return f.string() + " " + std::to_string(fs::file_size(f)) + " " +
+           std::to_string(fs::last_write_time(f).time_since_epoch().count()) + "\n";
+  };
+  std::ifstream in(scene, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(WISP_SOURCE_DIR "/data"))
+    if (e.is_regular_file()) files.push_back(stamp(e.path()));
+  std::sort(files.begin(), files.end());
+  for (const std::string& f : files) text += f;
+  return text + stamp(fs::canonical(WISP_BIN_DIR "/wisp-simulate"));
+}
+
+}  // namespace
+
 const std::string& simulated(const std::string& scene) {
   static std::map<std::string, std::string> done;
   auto it = done.find(scene);
   if (it != done.end()) return it->second;
-  const std::string dir = fresh_folder("anim_" + std::to_string(done.size()));
-  const std::string wsim = dir + "/" + std::filesystem::path(scene).stem().string() + ".wsim";
-  const CommandResult r =
-      run_command(std::string(WISP_BIN_DIR "/wisp simulate ") + scene + " -o " + wsim + " -q");
-  INFO(r.output);
-  REQUIRE(r.exit_code == 0);
+  namespace fs = std::filesystem;
+  const fs::path cache = fs::path(WISP_BIN_DIR).parent_path() / "test-cache";
+  fs::create_directories(cache);
+  char name[17];
+  std::snprintf(name, sizeof name, "%016llx",
+                static_cast<unsigned long long>(hash(simulation_inputs(scene))));
+  const std::string wsim =
+      (cache / (fs::path(scene).stem().string() + "-" + name + ".wsim")).string();
+  if (!fs::exists(wsim)) {
+    const std::string partial = fresh_folder("anim_" + std::to_string(done.size())) + "/" +
+                                fs::path(wsim).filename().string();
+    const CommandResult r =
+        run_command(std::string(WISP_BIN_DIR "/wisp simulate ") + scene + " -o " + partial + " -q");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    // The temporary folder may be on another file system: copy beside the cache file, then rename.
+    const std::string beside = wsim + ".partial-" + std::to_string(::getpid());
+    fs::copy_file(partial, beside, fs::copy_options::overwrite_existing);
+    fs::rename(beside, wsim);
+  }
   return done.emplace(scene, wsim).first->second;
 }
 

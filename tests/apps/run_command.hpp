@@ -14,8 +14,12 @@ struct CommandResult {
 
 CommandResult run_command(const std::string& command);
 
-// `wisp simulate scene -o <file>`, run once per test process and scene (ctest runs test cases
-// in parallel processes, so each has its own copy); returns the saved animation's path.
+// The saved animation of `wisp simulate scene`, made once for every test process of this build:
+// ctest runs each test case in a process of its own, and the default scene alone simulates in
+// 3-4 s, which dozens of cases need. The file is kept in the build folder (test-cache/), named by
+// a hash of the scene's text, the files under data/ (their paths, sizes and times) and the
+// simulator executable's size and time, so an edited scene, asset or simulator makes a new one;
+// it is written to a temporary name and renamed, so parallel cases never read half a file.
 const std::string& simulated(const std::string& scene);
 
 }  // namespace wisp::test
