@@ -80,6 +80,16 @@ const std::string& simulated(const std::string& scene) {
     const std::string beside = wsim + ".partial-" + std::to_string(::getpid());
     fs::copy_file(partial, beside, fs::copy_options::overwrite_existing);
     fs::rename(beside, wsim);
+    // The scene's animations of earlier builds (8.7 MB each for the default scene) go.
+    const std::string prefix = fs::path(scene).stem().string() + "-";
+    for (const auto& e : fs::directory_iterator(cache)) {
+      const std::string file = e.path().filename().string();
+      if (file.rfind(prefix, 0) == 0 && e.path().extension() == ".wsim" && e.path() != wsim &&
+          file.size() == fs::path(wsim).filename().string().size()) {
+        std::error_code ignored;  // another process may have removed it first
+        fs::remove(e.path(), ignored);
+      }
+    }
   }
   return done.emplace(scene, wsim).first->second;
 }

@@ -19,7 +19,8 @@ CommandResult run_command(const std::string& command);
 // 3-4 s, which dozens of cases need. The file is kept in the build folder (test-cache/), named by
 // a hash of the scene's text, the files under data/ (their paths, sizes and times) and the
 // simulator executable's size and time, so an edited scene, asset or simulator makes a new one;
-// it is written to a temporary name and renamed, so parallel cases never read half a file.
+// it is written to a temporary name and renamed, so parallel cases never read half a file, and
+// replaces the scene's animations of earlier builds.
 const std::string& simulated(const std::string& scene);
 
 }  // namespace wisp::test
