@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
-#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <vector>
@@ -30,12 +30,6 @@ CommandResult run_command(const std::string& command) {
 }
 
 namespace {
-
-// FNV-1a over `text`, continuing from `h`.
-std::uint64_t hash(const std::string& text, std::uint64_t h = 1469598103934665603ull) {
-  for (const unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 // What the simulation of `scene` depends on, as text: the scene, every file under data/ (name,
 // size, time) and the simulator.
@@ -65,23 +59,18 @@ const std::string& simulated(const std::string& scene) {
   const fs::path cache = fs::path(WISP_BIN_DIR).parent_path() / "test-cache";
   fs::create_directories(cache);
   char name[17];
-  std::snprintf(name, sizeof name, "%016llx",
-                static_cast<unsigned long long>(hash(simulation_inputs(scene))));
-  const std::string wsim =
-      (cache / (fs::path(scene).stem().string() + "-" + name + ".wsim")).string();
+  std::snprintf(name, sizeof name, "%016zx", std::hash<std::string>{}(simulation_inputs(scene)));
+  const std::string prefix = fs::path(scene).stem().string() + "-";
+  const std::string wsim = (cache / (prefix + name + ".wsim")).string();
   if (!fs::exists(wsim)) {
-    const std::string partial = fresh_folder("anim_" + std::to_string(done.size())) + "/" +
-                                fs::path(wsim).filename().string();
+    // Simulated beside the cache file under this process's own name, then renamed into place.
+    const std::string partial = wsim + ".partial-" + std::to_string(::getpid());
     const CommandResult r =
         run_command(std::string(WISP_BIN_DIR "/wisp simulate ") + scene + " -o " + partial + " -q");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    // The temporary folder may be on another file system: copy beside the cache file, then rename.
-    const std::string beside = wsim + ".partial-" + std::to_string(::getpid());
-    fs::copy_file(partial, beside, fs::copy_options::overwrite_existing);
-    fs::rename(beside, wsim);
+    fs::rename(partial, wsim);
     // The scene's animations of earlier builds (8.7 MB each for the default scene) go.
-    const std::string prefix = fs::path(scene).stem().string() + "-";
     for (const auto& e : fs::directory_iterator(cache)) {
       const std::string file = e.path().filename().string();
       if (file.rfind(prefix, 0) == 0 && e.path().extension() == ".wsim" && e.path() != wsim &&
