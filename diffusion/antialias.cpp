@@ -162,6 +162,8 @@ std::vector<std::array<std::array<int, 2>, 9>> neighbour_orders(int n) {
   return orders;
 }
 
+constexpr int kMaxSamples = 16 * 16;  // AntialiasOptions::samples is at most 16
+
 // A segment near the pixel being re-sampled, copied out of the list (which is indexed and ordered
 // like `local` below) so that the inner loops read contiguous memory.
 struct LocalSegment {
@@ -188,6 +190,40 @@ NearestPoint nearest_point(const Vector2d& q, const std::vector<LocalSegment>& l
   }
   best.distance = std::sqrt(best2);
   return best;
+}
+
+// nearest_point for each of the points (qx[i], qy[i]), i < count, one pass over the segments for
+// all of them, the points in the inner loop so that it vectorises. The arithmetic is
+// nearest_point's, operation for operation, with its roundings spelled out (Eigen's 2-vectors
+// multiply, then add the products; a + f d is one fused multiply-add), so the answers are the same
+// to the bit.
+__attribute__((optimize("fp-contract=off"))) void nearest_points(
+    const double* qx, const double* qy, int count, const std::vector<LocalSegment>& local,
+    const std::vector<Segment>& segments, NearestPoint* out) {
+  double best2[kMaxSamples], along[kMaxSamples];
+  int best[kMaxSamples];
+  for (int s = 0; s < count; ++s)
+    best2[s] = std::numeric_limits<double>::infinity(), best[s] = -1, along[s] = 0;
+  for (int i = 0; i < int(local.size()); ++i) {
+    const LocalSegment& g = local[size_t(i)];
+    const double ax = g.a.x(), ay = g.a.y(), dx = g.d.x(), dy = g.d.y(), len2 = g.len2;
+    const bool flat = !(len2 > 0);
+    for (int s = 0; s < count; ++s) {
+      const double dot = (qx[s] - ax) * dx + (qy[s] - ay) * dy;
+      const double f = flat ? 0.0 : std::clamp(dot / len2, 0.0, 1.0);
+      const double ex = std::fma(f, dx, ax) - qx[s], ey = std::fma(f, dy, ay) - qy[s];
+      const double dist2 = ex * ex + ey * ey;
+      const bool nearer = dist2 < best2[s];
+      best2[s] = nearer ? dist2 : best2[s];
+      best[s] = nearer ? i : best[s];
+      along[s] = nearer ? f : along[s];
+    }
+  }
+  for (int s = 0; s < count; ++s) {
+    out[s].segment = best[s] >= 0 ? &segments[local[size_t(best[s])].k] : nullptr;
+    out[s].along = along[s];
+    out[s].distance = std::sqrt(best2[s]);
+  }
 }
 
 // The colour a curve imposes on the side of it that faces q at its point `at`, if that side is a
@@ -316,7 +352,8 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
         // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
         // moved towards the colour of the nearest curve as q is nearer to it than the centre is
         // (the linear profile that the solve's boundary rule assumes along a link).
-        const auto sample_colour = [&](const Vector2d& q, const Vector2d& centre, int cx, int cy) {
+        const auto sample_colour = [&](const Vector2d& q, const NearestPoint& at,
+                                       const Vector2d& centre, int cx, int cy) {
           const size_t c = size_t(cy) * width + cx;
           const int sx = cx - sw.x, sy = cy - sw.y;
           const size_t s = size_t(sy) * sw.width + sx;
@@ -324,7 +361,6 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
               sx >= 0 && sy >= 0 && sx < sw.width && sy < sw.height
                   ? Color(source[s], source[n_source + s], source[2 * n_source + s])
                   : Color::Zero();
-          const NearestPoint at = nearest_point(q, near, segments);
           Color wall;
           if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
           const double from_centre = centre_distance(centre, c, at.segment->curve);
@@ -332,10 +368,16 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           return Color(wall + (solved - wall) * float(at.distance / from_centre));
         };
 
+        // The sub-samples and the nearest point of a curve to each.
+        double qx[kMaxSamples], qy[kMaxSamples];
+        for (int s = 0; s < n * n; ++s)
+          qx[s] = x + (s % n + 0.5) / n, qy[s] = y + (s / n + 0.5) / n;
+        NearestPoint nearest[kMaxSamples];
+        nearest_points(qx, qy, n * n, near, segments, nearest);
         Color sum = Color::Zero();
         int count = 0;
         for (int s = 0; s < n * n; ++s) {
-          const Vector2d q(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
+          const Vector2d q(qx[s], qy[s]);
           if (region && !inside(q, p, Vector2d(x + 0.5, y + 0.5))) continue;  // not shown
           bool reached = false;
           for (const auto& [dx, dy] : orders[s]) {
@@ -350,13 +392,13 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             // always a curve: the head hides hair along its own outline).
             if (blocked || (region && !region->centres[c])) continue;
             reached = true;
-            sum += sample_colour(q, centre, cx, cy);
+            sum += sample_colour(q, nearest[s], centre, cx, cy);
             ++count;
             break;
           }
           if (reached) continue;
           // A sliver with no pixel centre: the side of the nearest curve that faces q.
-          const NearestPoint at = nearest_point(q, near, segments);
+          const NearestPoint& at = nearest[s];
           Color colour;
           if (at.segment && facing_colour(curves, at, q, colour)) {
             sum += colour;
