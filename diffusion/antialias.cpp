@@ -81,14 +81,15 @@ bool clip(Vector2d& a, Vector2d& b, const Vector2d& lo, const Vector2d& hi) {
   return true;
 }
 
-// Calls visit(x, y) for every pixel of the width x height grid that the segment passes through
-// (Amanatides and Woo's grid walk).
+// Calls visit(x, y) for every pixel of the window that the segment passes through (Amanatides and
+// Woo's grid walk), in image coordinates.
 template <class Visit>
-void pixels_along(Vector2d a, Vector2d b, int width, int height, Visit&& visit) {
-  if (!clip(a, b, Vector2d(0, 0), Vector2d(width, height))) return;
-  const auto cell = [](double v, int n) { return std::clamp(int(std::floor(v)), 0, n - 1); };
-  int x = cell(a.x(), width), y = cell(a.y(), height);
-  const int xe = cell(b.x(), width), ye = cell(b.y(), height);
+void pixels_along(Vector2d a, Vector2d b, const PixelWindow& box, Visit&& visit) {
+  const int x0 = box.x, y0 = box.y, x1 = box.x + box.width - 1, y1 = box.y + box.height - 1;
+  if (!clip(a, b, Vector2d(x0, y0), Vector2d(x1 + 1, y1 + 1))) return;
+  const auto cell = [](double v, int lo, int hi) { return std::clamp(int(std::floor(v)), lo, hi); };
+  int x = cell(a.x(), x0, x1), y = cell(a.y(), y0, y1);
+  const int xe = cell(b.x(), x0, x1), ye = cell(b.y(), y0, y1);
   const Vector2d d = b - a;
   const int sx = d.x() > 0 ? 1 : -1, sy = d.y() > 0 ? 1 : -1;
   constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -101,10 +102,10 @@ void pixels_along(Vector2d a, Vector2d b, int width, int height, Visit&& visit) 
     if (k == steps) break;
     if (next_x < next_y) {
       next_x += step_x;
-      x = std::clamp(x + sx, 0, width - 1);
+      x = std::clamp(x + sx, x0, x1);
     } else {
       next_y += step_y;
-      y = std::clamp(y + sy, 0, height - 1);
+      y = std::clamp(y + sy, y0, y1);
     }
   }
 }
@@ -125,24 +126,47 @@ bool meet(const Vector2d& p, const Vector2d& q, const Vector2d& a, const Vector2
   return true;
 }
 
-// Per pixel, the segments that pass through it (compressed rows: first[p] .. first[p+1]).
+// Per pixel of `box`, the segments that pass through it (compressed rows: those of the pixel
+// with index p = bin(x, y) are index[first[p]] .. index[first[p + 1] - 1]).
 struct SegmentBins {
+  PixelWindow box;
   std::vector<int> first, index;
+
+  size_t bin(int x, int y) const { return size_t(y - box.y) * box.width + (x - box.x); }
 };
 
-SegmentBins bin_segments(const std::vector<Segment>& segments, int width, int height) {
+// `box` holds every segment whole (see segments_box), so clipping to it leaves each as clipping
+// to the image would: the bins are the image's, kept only where segments are.
+SegmentBins bin_segments(const std::vector<Segment>& segments, const PixelWindow& box) {
   SegmentBins bins;
-  bins.first.assign(size_t(width) * height + 1, 0);
+  bins.box = box;
+  bins.first.assign(box.pixel_count() + 1, 0);
   for (const Segment& s : segments)
-    pixels_along(s.a, s.b, width, height,
-                 [&](int x, int y) { ++bins.first[size_t(y) * width + x + 1]; });
+    pixels_along(s.a, s.b, box, [&](int x, int y) { ++bins.first[bins.bin(x, y) + 1]; });
   for (size_t i = 1; i < bins.first.size(); ++i) bins.first[i] += bins.first[i - 1];
   bins.index.resize(bins.first.back());
   std::vector<int> fill(bins.first.begin(), bins.first.end() - 1);
   for (size_t k = 0; k < segments.size(); ++k)
-    pixels_along(segments[k].a, segments[k].b, width, height,
-                 [&](int x, int y) { bins.index[fill[size_t(y) * width + x]++] = int(k); });
+    pixels_along(segments[k].a, segments[k].b, box,
+                 [&](int x, int y) { bins.index[fill[bins.bin(x, y)]++] = int(k); });
   return bins;
+}
+
+// The pixels of the image that the segments' boxes reach (each pixel whole), where antialias
+// works: a window of a few hair strands' size instead of the image.
+PixelWindow segments_box(const std::vector<const std::vector<Segment>*>& lists, int width,
+                         int height) {
+  Eigen::AlignedBox2d box;
+  for (const std::vector<Segment>* list : lists)
+    for (const Segment& s : *list) box.extend(s.a), box.extend(s.b);
+  if (box.isEmpty()) return {};
+  // floor(max) + 1, not ceil(max): a segment ending on a pixel's edge counts that pixel.
+  const double x0 = std::max(0.0, std::floor(box.min().x()));
+  const double y0 = std::max(0.0, std::floor(box.min().y()));
+  const double x1 = std::min(double(width), std::floor(box.max().x()) + 1);
+  const double y1 = std::min(double(height), std::floor(box.max().y()) + 1);
+  if (!(x0 < x1 && y0 < y1)) return {};
+  return {int(x0), int(y0), int(x1 - x0), int(y1 - y0)};
 }
 
 // The pixel's own centre and its eight neighbours' as offsets, nearest first from sub-sample s
@@ -280,14 +304,17 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   const std::vector<Segment> segments = active_segments(curves, options.flatten_tolerance);
   stats.segments = long(segments.size());
   if (segments.empty()) return stats;
-  const SegmentBins bins = bin_segments(segments, width, height);
   const std::vector<Segment> edges = region ? ring_segments(region->rings) : std::vector<Segment>();
-  const SegmentBins edge_bins = region ? bin_segments(edges, width, height) : SegmentBins();
-  // Whether sub-sample q of pixel p lies in the region: its centre's side, flipped by every ring
-  // edge between q and the centre (both in p, so only the edges binned in p can cross).
-  const auto inside = [&](const Vector2d& q, size_t p, const Vector2d& centre) {
+  const PixelWindow box = segments_box({&segments, &edges}, width, height);
+  if (box.pixel_count() == 0) return stats;  // every segment outside the image
+  const SegmentBins bins = bin_segments(segments, box);
+  const SegmentBins edge_bins = region ? bin_segments(edges, box) : SegmentBins();
+  // Whether sub-sample q of pixel p = (x, y) lies in the region: its centre's side, flipped by
+  // every ring edge between q and the centre (both in p, so only the edges binned in p can cross).
+  const auto inside = [&](const Vector2d& q, size_t p, int x, int y, const Vector2d& centre) {
     bool in = region->centres[p] != 0;
-    for (int k = edge_bins.first[p]; k < edge_bins.first[p + 1]; ++k)
+    const size_t b = edge_bins.bin(x, y);
+    for (int k = edge_bins.first[b]; k < edge_bins.first[b + 1]; ++k)
       in ^= meet(q, centre, edges[edge_bins.index[k]].a, edges[edge_bins.index[k]].b);
     return in;
   };
@@ -301,117 +328,119 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   };
   std::vector<std::vector<Resampled>> new_colours(static_cast<size_t>(height));
   std::vector<long> resampled(size_t(height), 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<int> local;
-    std::vector<LocalSegment> near, blockers;
-    struct CentreDistance {
-      size_t centre;
-      int curve;
-      double distance;
-    };
-    std::vector<CentreDistance> centre_distances;
-    for (int y = rows.begin(); y < rows.end(); ++y)
-      for (int x = 0; x < width; ++x) {
-        const size_t p = size_t(y) * width + x;
-        if (bins.first[p] == bins.first[p + 1]) continue;
-        // Every segment in the 3 x 3 block around p, once.
-        local.clear();
-        for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
-          for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
-            const size_t c = size_t(yy) * width + xx;
-            local.insert(local.end(), bins.index.begin() + bins.first[c],
-                         bins.index.begin() + bins.first[c + 1]);
-          }
-        std::sort(local.begin(), local.end());
-        local.erase(std::unique(local.begin(), local.end()), local.end());
-        // The paths from a sub-sample to the centres it may take stay in the box from p's corner
-        // (x - 1/2, y - 1/2) to (x + 3/2, y + 3/2): only segments whose own box meets it can
-        // block one (with a margin far above rounding, so no test's answer changes).
-        near.clear();
-        blockers.clear();
-        const Eigen::AlignedBox2d reach(Vector2d(x - 0.5 - 1e-6, y - 0.5 - 1e-6),
-                                        Vector2d(x + 1.5 + 1e-6, y + 1.5 + 1e-6));
-        for (int k : local) {
-          const Segment& g = segments[k];
-          const Vector2d d = g.b - g.a;
-          near.push_back({g.a, g.b, d, d.squaredNorm(), k, g.curve});
-          if (reach.intersects(Eigen::AlignedBox2d(g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))))
-            blockers.push_back(near.back());
-        }
-
-        // A centre's distance to a curve, once per pixel: its sub-samples share a few of them.
-        centre_distances.clear();
-        const auto centre_distance = [&](const Vector2d& centre, size_t c, int curve) {
-          for (const CentreDistance& d : centre_distances)
-            if (d.centre == c && d.curve == curve) return d.distance;
-          const double d = nearest_point(centre, near, segments, curve).distance;
-          centre_distances.push_back({c, curve, d});
-          return d;
+  const int box_x1 = box.x + box.width - 1, box_y1 = box.y + box.height - 1;
+  tbb::parallel_for(
+      tbb::blocked_range<int>(box.y, box_y1 + 1), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<int> local;
+        std::vector<LocalSegment> near, blockers;
+        struct CentreDistance {
+          size_t centre;
+          int curve;
+          double distance;
         };
+        std::vector<CentreDistance> centre_distances;
+        for (int y = rows.begin(); y < rows.end(); ++y)
+          for (int x = box.x; x <= box_x1; ++x) {
+            const size_t p = size_t(y) * width + x, b = bins.bin(x, y);
+            if (bins.first[b] == bins.first[b + 1]) continue;
+            // Every segment in the 3 x 3 block around p, once (the box holds every binned pixel).
+            local.clear();
+            for (int yy = std::max(box.y, y - 1); yy <= std::min(box_y1, y + 1); ++yy)
+              for (int xx = std::max(box.x, x - 1); xx <= std::min(box_x1, x + 1); ++xx) {
+                const size_t c = bins.bin(xx, yy);
+                local.insert(local.end(), bins.index.begin() + bins.first[c],
+                             bins.index.begin() + bins.first[c + 1]);
+              }
+            std::sort(local.begin(), local.end());
+            local.erase(std::unique(local.begin(), local.end()), local.end());
+            // The paths from a sub-sample to the centres it may take stay in the box from p's
+            // corner (x - 1/2, y - 1/2) to (x + 3/2, y + 3/2): only segments whose own box meets it
+            // can block one (with a margin far above rounding, so no test's answer changes).
+            near.clear();
+            blockers.clear();
+            const Eigen::AlignedBox2d reach(Vector2d(x - 0.5 - 1e-6, y - 0.5 - 1e-6),
+                                            Vector2d(x + 1.5 + 1e-6, y + 1.5 + 1e-6));
+            for (int k : local) {
+              const Segment& g = segments[k];
+              const Vector2d d = g.b - g.a;
+              near.push_back({g.a, g.b, d, d.squaredNorm(), k, g.curve});
+              if (reach.intersects(Eigen::AlignedBox2d(g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))))
+                blockers.push_back(near.back());
+            }
 
-        // The colour at sub-sample q, reached from the centre of pixel c: the solved value there,
-        // moved towards the colour of the nearest curve as q is nearer to it than the centre is
-        // (the linear profile that the solve's boundary rule assumes along a link).
-        const auto sample_colour = [&](const Vector2d& q, const NearestPoint& at,
-                                       const Vector2d& centre, int cx, int cy) {
-          const size_t c = size_t(cy) * width + cx;
-          const int sx = cx - sw.x, sy = cy - sw.y;
-          const size_t s = size_t(sy) * sw.width + sx;
-          const Color solved =
-              sx >= 0 && sy >= 0 && sx < sw.width && sy < sw.height
-                  ? Color(source[s], source[n_source + s], source[2 * n_source + s])
-                  : Color::Zero();
-          Color wall;
-          if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
-          const double from_centre = centre_distance(centre, c, at.segment->curve);
-          if (!(from_centre > at.distance)) return solved;
-          return Color(wall + (solved - wall) * float(at.distance / from_centre));
-        };
+            // A centre's distance to a curve, once per pixel: its sub-samples share a few of them.
+            centre_distances.clear();
+            const auto centre_distance = [&](const Vector2d& centre, size_t c, int curve) {
+              for (const CentreDistance& d : centre_distances)
+                if (d.centre == c && d.curve == curve) return d.distance;
+              const double d = nearest_point(centre, near, segments, curve).distance;
+              centre_distances.push_back({c, curve, d});
+              return d;
+            };
 
-        // The sub-samples and the nearest point of a curve to each.
-        double qx[kMaxSamples], qy[kMaxSamples];
-        for (int s = 0; s < n * n; ++s)
-          qx[s] = x + (s % n + 0.5) / n, qy[s] = y + (s / n + 0.5) / n;
-        NearestPoint nearest[kMaxSamples];
-        nearest_points(qx, qy, n * n, near, segments, nearest);
-        Color sum = Color::Zero();
-        int count = 0;
-        for (int s = 0; s < n * n; ++s) {
-          const Vector2d q(qx[s], qy[s]);
-          if (region && !inside(q, p, Vector2d(x + 0.5, y + 0.5))) continue;  // not shown
-          bool reached = false;
-          for (const auto& [dx, dy] : orders[s]) {
-            const int cx = x + dx, cy = y + dy;
-            if (cx < 0 || cy < 0 || cx >= width || cy >= height) continue;
-            const Vector2d centre(cx + 0.5, cy + 0.5);
-            const bool blocked =
-                std::any_of(blockers.begin(), blockers.end(),
-                            [&](const LocalSegment& g) { return meet(q, centre, g.a, g.b); });
-            const size_t c = size_t(cy) * width + cx;
-            // A centre outside the shown area holds no colour of it (the region's edge is not
-            // always a curve: the head hides hair along its own outline).
-            if (blocked || (region && !region->centres[c])) continue;
-            reached = true;
-            sum += sample_colour(q, nearest[s], centre, cx, cy);
-            ++count;
-            break;
+            // The colour at sub-sample q, reached from the centre of pixel c: the solved value
+            // there, moved towards the colour of the nearest curve as q is nearer to it than the
+            // centre is (the linear profile that the solve's boundary rule assumes along a link).
+            const auto sample_colour = [&](const Vector2d& q, const NearestPoint& at,
+                                           const Vector2d& centre, int cx, int cy) {
+              const size_t c = size_t(cy) * width + cx;
+              const int sx = cx - sw.x, sy = cy - sw.y;
+              const size_t s = size_t(sy) * sw.width + sx;
+              const Color solved =
+                  sx >= 0 && sy >= 0 && sx < sw.width && sy < sw.height
+                      ? Color(source[s], source[n_source + s], source[2 * n_source + s])
+                      : Color::Zero();
+              Color wall;
+              if (!at.segment || !facing_colour(curves, at, q, wall)) return solved;
+              const double from_centre = centre_distance(centre, c, at.segment->curve);
+              if (!(from_centre > at.distance)) return solved;
+              return Color(wall + (solved - wall) * float(at.distance / from_centre));
+            };
+
+            // The sub-samples and the nearest point of a curve to each.
+            double qx[kMaxSamples], qy[kMaxSamples];
+            for (int s = 0; s < n * n; ++s)
+              qx[s] = x + (s % n + 0.5) / n, qy[s] = y + (s / n + 0.5) / n;
+            NearestPoint nearest[kMaxSamples];
+            nearest_points(qx, qy, n * n, near, segments, nearest);
+            Color sum = Color::Zero();
+            int count = 0;
+            for (int s = 0; s < n * n; ++s) {
+              const Vector2d q(qx[s], qy[s]);
+              if (region && !inside(q, p, x, y, Vector2d(x + 0.5, y + 0.5))) continue;  // not shown
+              bool reached = false;
+              for (const auto& [dx, dy] : orders[s]) {
+                const int cx = x + dx, cy = y + dy;
+                if (cx < 0 || cy < 0 || cx >= width || cy >= height) continue;
+                const Vector2d centre(cx + 0.5, cy + 0.5);
+                const bool blocked =
+                    std::any_of(blockers.begin(), blockers.end(),
+                                [&](const LocalSegment& g) { return meet(q, centre, g.a, g.b); });
+                const size_t c = size_t(cy) * width + cx;
+                // A centre outside the shown area holds no colour of it (the region's edge is not
+                // always a curve: the head hides hair along its own outline).
+                if (blocked || (region && !region->centres[c])) continue;
+                reached = true;
+                sum += sample_colour(q, nearest[s], centre, cx, cy);
+                ++count;
+                break;
+              }
+              if (reached) continue;
+              // A sliver with no pixel centre: the side of the nearest curve that faces q.
+              const NearestPoint& at = nearest[s];
+              Color colour;
+              if (at.segment && facing_colour(curves, at, q, colour)) {
+                sum += colour;
+                ++count;
+              }
+            }
+            ++resampled[y];
+            if (count == 0) continue;
+            Color mean;
+            for (int ch = 0; ch < 3; ++ch) mean[ch] = sum[ch] / count;
+            new_colours[size_t(y)].push_back({p, mean});
           }
-          if (reached) continue;
-          // A sliver with no pixel centre: the side of the nearest curve that faces q.
-          const NearestPoint& at = nearest[s];
-          Color colour;
-          if (at.segment && facing_colour(curves, at, q, colour)) {
-            sum += colour;
-            ++count;
-          }
-        }
-        ++resampled[y];
-        if (count == 0) continue;
-        Color mean;
-        for (int ch = 0; ch < 3; ++ch) mean[ch] = sum[ch] / count;
-        new_colours[size_t(y)].push_back({p, mean});
-      }
-  });
+      });
   for (const std::vector<Resampled>& row : new_colours)
     for (const Resampled& r : row)
       for (int ch = 0; ch < 3; ++ch) planes[ch * n_pixels + r.pixel] = r.colour[ch];
