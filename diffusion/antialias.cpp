@@ -320,6 +320,9 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   };
   const int n = options.samples;
   const auto orders = neighbour_orders(n);
+  // Sub-sample s of pixel (x, y) is at (x + offset_x[s], y + offset_y[s]).
+  std::vector<double> offset_x(size_t(n) * n), offset_y(size_t(n) * n);
+  for (int s = 0; s < n * n; ++s) offset_x[s] = (s % n + 0.5) / n, offset_y[s] = (s / n + 0.5) / n;
 
   // Each row's new colours, written once every row has been read: `source` may be `planes`.
   struct Resampled {
@@ -339,6 +342,8 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           double distance;
         };
         std::vector<CentreDistance> centre_distances;
+        std::vector<double> qx(size_t(n) * n), qy(size_t(n) * n);
+        std::vector<NearestPoint> nearest(size_t(n) * n);
         for (int y = rows.begin(); y < rows.end(); ++y)
           for (int x = box.x; x <= box_x1; ++x) {
             const size_t p = size_t(y) * width + x, b = bins.bin(x, y);
@@ -398,11 +403,8 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             };
 
             // The sub-samples and the nearest point of a curve to each.
-            double qx[kMaxSamples], qy[kMaxSamples];
-            for (int s = 0; s < n * n; ++s)
-              qx[s] = x + (s % n + 0.5) / n, qy[s] = y + (s / n + 0.5) / n;
-            NearestPoint nearest[kMaxSamples];
-            nearest_points(qx, qy, n * n, near, segments, nearest);
+            for (int s = 0; s < n * n; ++s) qx[s] = x + offset_x[s], qy[s] = y + offset_y[s];
+            nearest_points(qx.data(), qy.data(), n * n, near, segments, nearest.data());
             Color sum = Color::Zero();
             int count = 0;
             for (int s = 0; s < n * n; ++s) {
