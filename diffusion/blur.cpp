@@ -2,42 +2,28 @@
 // the blur module, blur_module.hpp), and the blur map solved alone (see blur.hpp).
 #include "diffusion/blur.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "diffusion/blur_module.hpp"
 #include "diffusion/rasterize.hpp"
+#include "util/module.hpp"
 
 namespace wisp::diffusion {
 namespace {
 
 using RungFunction = decltype(&wisp_blur_rung);
 
-// The blur module, loaded once per process on first use from lib/wisp/ beside the executable's
-// bin/ folder (the layout of io/install_layout.hpp, which diffusion/ does not include). Throws
-// when it is missing or from another build.
+// The blur module, loaded once per process on first use (util/module.hpp). Throws when it is
+// missing or from another build.
 RungFunction blur_rung() {
-  static const std::pair<RungFunction, std::string> loaded =
-      []() -> std::pair<RungFunction, std::string> {
-    std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    const std::filesystem::path path =
-        (exe.parent_path().parent_path() / "lib" / "wisp" / "wisp-blur.so").lexically_normal();
-    void* handle = ec ? nullptr : dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = ec ? nullptr : dlerror();
-      return {nullptr, std::string("cannot load the blur module (") + (why ? why : path.c_str()) +
-                           "); build or install wisp whole"};
-    }
-    auto f = reinterpret_cast<RungFunction>(dlsym(handle, "wisp_blur_rung"));
-    if (!f) return {nullptr, "the blur module " + path.string() + " lacks wisp_blur_rung"};
-    return {f, ""};
+  static const std::pair<RungFunction, std::string> loaded = [] {
+    util::Module module = util::open_module("wisp-blur.so", "blur");
+    const auto rung = module.function<RungFunction>("wisp_blur_rung");
+    return std::make_pair(rung, module.error);
   }();
   if (!loaded.first) throw std::runtime_error(loaded.second);
   return loaded.first;

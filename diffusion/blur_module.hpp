@@ -4,7 +4,7 @@
 // a drawing with blur needs them, so the module is loaded (dlopen) the first time a picture is
 // blurred, not by every program that links the diffusion stage (docs/performance.md). It is
 // built from diffusion/blur_module.cpp alone and lives in lib/wisp/ beside the bin/ folder of
-// the executables, where io/install_layout.hpp puts every module.
+// the executables, where util/module.hpp finds every module.
 #pragma once
 
 extern "C" {

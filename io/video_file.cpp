@@ -13,9 +13,9 @@
 
 #include "io/atomic_file.hpp"
 #include "io/drawing_xml.hpp"
-#include "io/install_layout.hpp"
 #include "io/png_decode.hpp"
 #include "io/video_module.hpp"
+#include "util/module.hpp"
 
 namespace wisp::io {
 namespace {
@@ -28,26 +28,16 @@ struct VideoModule {
   std::string error;  // why it could not be loaded; empty when it was
 };
 
-// Loaded once per process and never unloaded (FFmpeg and its codec libraries keep state that
-// outlives a dlclose). Throws "<video>: ..." when the module is missing.
+// Loaded once per process (util/module.hpp). Throws "<video>: ..." when the module is missing.
 const VideoModule& video_module(const std::filesystem::path& video) {
   static const VideoModule loaded = [] {
+    util::Module module = util::open_module("wisp-video.so", "video");
     VideoModule m;
-    const std::filesystem::path path = module_path("wisp-video.so");
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = dlerror();
-      m.error = std::string("cannot load the video module (") + (why ? why : path.c_str()) +
-                "); build or install wisp whole";
-      return m;
-    }
-    m.open = reinterpret_cast<decltype(m.open)>(dlsym(handle, "wisp_video_open"));
-    m.write = reinterpret_cast<decltype(m.write)>(dlsym(handle, "wisp_video_write"));
-    m.close = reinterpret_cast<decltype(m.close)>(dlsym(handle, "wisp_video_close"));
-    m.count_frames =
-        reinterpret_cast<decltype(m.count_frames)>(dlsym(handle, "wisp_video_count_frames"));
-    if (!m.open || !m.write || !m.close || !m.count_frames)
-      m.error = "the video module " + path.string() + " lacks a function (from another build?)";
+    m.open = module.function<decltype(m.open)>("wisp_video_open");
+    m.write = module.function<decltype(m.write)>("wisp_video_write");
+    m.close = module.function<decltype(m.close)>("wisp_video_close");
+    m.count_frames = module.function<decltype(m.count_frames)>("wisp_video_count_frames");
+    m.error = module.error;
     return m;
   }();
   if (!loaded.error.empty()) throw VideoModuleError(video.string() + ": " + loaded.error);

@@ -3,7 +3,7 @@
 // C functions. FFmpeg brings some 130 shared libraries (codecs, x264), so it is loaded (dlopen)
 // only when a video is written or checked, not by every command at start-up
 // (docs/performance.md). The module is built from io/video_module.cpp alone and installed in
-// lib/wisp/ beside the bin/ folder of the executables (io/install_layout.hpp).
+// lib/wisp/ beside the bin/ folder of the executables (util/module.hpp).
 #pragma once
 
 extern "C" {

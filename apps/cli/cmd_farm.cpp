@@ -26,9 +26,9 @@
 #include "apps/render/scene_frames.hpp"
 #include "apps/render/scene_setup.hpp"
 #include "io/atomic_file.hpp"
-#include "io/install_layout.hpp"
 #include "io/scene.hpp"
 #include "sim/simulate.hpp"
+#include "util/module.hpp"
 
 namespace wisp::cli {
 namespace {
@@ -195,7 +195,7 @@ void run_submit(const SubmitArgs& a, const std::vector<std::string>& command) {
   r.outdir = fs::absolute(a.outdir).lexically_normal().string();
   while (r.outdir.size() > 1 && r.outdir.back() == '/') r.outdir.pop_back();
   // The dispatcher beside this wisp-farm: the jobs run `wisp simulate`, `wisp render`...
-  r.wisp = (io::executable_dir() / "wisp").string();
+  r.wisp = (util::executable_dir() / "wisp").string();
   r.size_given = !a.size.empty();
   if (r.size_given) {
     std::tie(r.width, r.height) = render::parse_size("--size", a.size);

@@ -11,7 +11,7 @@
 
 #include "apps/cli/cli_error.hpp"
 #include "apps/cli/commands.hpp"
-#include "io/install_layout.hpp"
+#include "util/module.hpp"
 
 int main(int argc, char** argv) {
   using namespace wisp::cli;
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     const CommandInfo* command = find_command(argv[i]);
     if (!command) break;
     const std::string exe =
-        (wisp::io::executable_dir() / ("wisp-" + std::string(command->name))).string();
+        (wisp::util::executable_dir() / ("wisp-" + std::string(command->name))).string();
     execv(exe.c_str(), argv);
     return report_error("wisp", "cannot run the " + std::string(command->name) + " command (" +
                                     exe + ": " + std::strerror(errno) +
