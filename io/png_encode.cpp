@@ -1,13 +1,13 @@
-// PNG encoding with libpng at a fast setting (see png_encode.hpp).
+// PNG encoding: the file's chunks written here around ISA-L's igzip (see png_encode.hpp).
 #include "io/png_encode.hpp"
 
-#include <png.h>
+#include <isa-l/igzip_lib.h>
+#include <zlib.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#include <zlib.h>
 
-#include <csetjmp>
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -17,47 +17,79 @@
 namespace wisp::io {
 namespace {
 
-void append(png_structp png, png_bytep data, png_size_t length) {
-  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
-  out->insert(out->end(), data, data + length);
+void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(std::uint8_t(v >> shift));
 }
 
-void flush(png_structp) {}
+// A chunk: its length, type and data, and the CRC-32 of type and data (PNG spec, 5.3).
+void put_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], const std::uint8_t* data,
+               std::size_t n) {
+  put_u32(out, std::uint32_t(n));
+  const auto* t = reinterpret_cast<const std::uint8_t*>(type);
+  out.insert(out.end(), t, t + 4);
+  if (n > 0) out.insert(out.end(), data, data + n);
+  uLong crc = crc32(0L, t, 4);
+  if (n > 0) crc = crc32_z(crc, data, n);
+  put_u32(out, std::uint32_t(crc));
+}
 
-void warn(png_structp, png_const_charp) {}
-
-// libpng reports errors by longjmp to the setjmp below; nothing with a destructor lives in this
-// frame after it, so the jump skips no cleanup.
-bool encode_into(png_structp png, png_infop info, const PixelRows& px,
-                 std::vector<std::uint8_t>* out) {
-  static constexpr int kColourType[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                         PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_set_write_fn(png, out, append, flush);
-  png_set_IHDR(png, info, png_uint_32(px.width), png_uint_32(px.height), 8,
-               kColourType[px.channels], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  // Up alone: one subtraction per byte, and smooth shading compresses almost as well as with the
-  // adaptive choice among all five filters, which tries each on every row.
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
-  // Run-length matches only (distance 1: after the Up filter, runs of zeros in flat and smooth
-  // parts): faster than level 1's hash chains, and smaller here (frame 36 at 1024^2: 212 KB
-  // against 228 KB).
-  png_set_compression_level(png, 1);
-  png_set_compression_strategy(png, Z_RLE);
-  png_write_info(png, info);
-  if (px.xrgb32) {  // libpng drops the filler byte and orders the others as RGB
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    png_set_bgr(png);
-    png_set_filler(png, 0, PNG_FILLER_AFTER);
-#else
-    png_set_filler(png, 0, PNG_FILLER_BEFORE);
-#endif
+// The image's rows, each as PNG stores it: the filter type byte (2, Up) and the row minus the row
+// above (the first row is its own bytes: Up against a row of zeros), compressed as one zlib
+// stream, in blocks of rows so that the filtered image is never whole in memory.
+std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
+  const std::size_t row_bytes = std::size_t(px.width) * px.channels;
+  if ((row_bytes + 1) * std::size_t(px.height) >= 0xffffffffu)
+    throw std::runtime_error("PNG encoding failed: image too large");
+  std::vector<std::uint8_t> level_buf(ISAL_DEF_LVL1_DEFAULT);
+  isal_zstream z;
+  isal_deflate_init(&z);
+  z.level = 1;
+  z.level_buf = level_buf.data();
+  z.level_buf_size = std::uint32_t(level_buf.size());
+  z.gzip_flag = IGZIP_ZLIB;
+  z.flush = NO_FLUSH;
+  std::vector<std::uint8_t> out;
+  const auto deflate = [&](std::uint8_t* data, std::size_t n, bool last) {
+    z.next_in = data;
+    z.avail_in = std::uint32_t(n);
+    z.end_of_stream = last ? 1 : 0;
+    do {
+      if (out.size() - z.total_out < 65536)
+        out.resize(std::max<std::size_t>(2 * out.size(), 65536));
+      z.next_out = out.data() + z.total_out;
+      z.avail_out = std::uint32_t(out.size() - z.total_out);
+      if (isal_deflate(&z) != COMP_OK) throw std::runtime_error("PNG encoding failed: igzip");
+    } while (z.avail_in > 0 || (last && z.internal_state.state != ZSTATE_END));
+  };
+  // About 256 KB of filtered rows a block, at least one row.
+  const int rows_per_block = int(std::max<std::size_t>(1, (256 << 10) / (row_bytes + 1)));
+  std::vector<std::uint8_t> block(std::size_t(std::min(rows_per_block, px.height)) *
+                                  (row_bytes + 1));
+  std::vector<std::uint8_t> row(row_bytes), above(row_bytes, 0);
+  int in_block = 0;
+  for (int y = 0; y < px.height; ++y) {
+    const std::uint8_t* src = px.data + std::size_t(y) * px.stride;
+    if (px.xrgb32) {
+      const auto* words = reinterpret_cast<const std::uint32_t*>(src);
+      for (int x = 0; x < px.width; ++x) {
+        row[3 * std::size_t(x)] = std::uint8_t(words[x] >> 16);
+        row[3 * std::size_t(x) + 1] = std::uint8_t(words[x] >> 8);
+        row[3 * std::size_t(x) + 2] = std::uint8_t(words[x]);
+      }
+    } else {
+      std::copy(src, src + row_bytes, row.begin());
+    }
+    std::uint8_t* f = &block[std::size_t(in_block) * (row_bytes + 1)];
+    f[0] = 2;  // Up
+    for (std::size_t i = 0; i < row_bytes; ++i) f[1 + i] = std::uint8_t(row[i] - above[i]);
+    row.swap(above);
+    if (++in_block == rows_per_block || y + 1 == px.height) {
+      deflate(block.data(), std::size_t(in_block) * (row_bytes + 1), y + 1 == px.height);
+      in_block = 0;
+    }
   }
-  for (int y = 0; y < px.height; ++y)
-    png_write_row(png, const_cast<png_bytep>(px.data + std::size_t(y) * px.stride));
-  png_write_end(png, nullptr);
-  return true;
+  out.resize(z.total_out);
+  return out;
 }
 
 }  // namespace
@@ -88,15 +120,22 @@ void pack_rgb(const float* r, const float* g, const float* b, std::uint32_t* out
 }
 
 std::vector<std::uint8_t> encode_png(const PixelRows& px) {
+  static constexpr std::uint8_t kColourType[5] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
   if (px.channels < 1 || px.channels > 4 || px.width <= 0 || px.height <= 0 || !px.data ||
       (px.xrgb32 && px.channels != 3))
     throw std::runtime_error("PNG encoding failed: bad image layout");
-  std::vector<std::uint8_t> out;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, warn);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  const bool ok = info && encode_into(png, info, px, &out);
-  png_destroy_write_struct(&png, &info);
-  if (!ok) throw std::runtime_error("PNG encoding failed");
+  const std::vector<std::uint8_t> idat = compressed_rows(px);
+  std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  out.reserve(idat.size() + 64 + idat.size() / (1 << 20) * 12);
+  std::vector<std::uint8_t> header;
+  put_u32(header, std::uint32_t(px.width));
+  put_u32(header, std::uint32_t(px.height));
+  // 8 bits a channel, the colour type, deflate, adaptive filtering (per row), no interlace.
+  header.insert(header.end(), {8, kColourType[px.channels], 0, 0, 0});
+  put_chunk(out, "IHDR", header.data(), header.size());
+  for (std::size_t at = 0; at < idat.size(); at += 1 << 20)  // IDAT chunks of at most 1 MB
+    put_chunk(out, "IDAT", idat.data() + at, std::min<std::size_t>(1 << 20, idat.size() - at));
+  put_chunk(out, "IEND", nullptr, 0);
   return out;
 }
 

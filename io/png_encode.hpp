@@ -1,9 +1,11 @@
-// Fast PNG encoding for the frames of a render: libpng at zlib level 1 with the Up filter only and
-// run-length matches (Z_RLE).
-// Frames are mostly smooth gradients and flat fills, where that costs about a tenth of the time
-// of the default (level 6, adaptive filters) for files a few per cent larger; the pixels are the
-// same. Writing is on the per-frame path (the frame and the hair image inside its SVG), so it is
-// worth a dedicated encoder.
+// Fast PNG encoding for the frames of a render: the Up filter on every row, compressed by ISA-L's
+// igzip at its level 1 (Intel's SIMD deflate, Debian's libisal), the PNG chunks around it written
+// here (libpng cannot take another deflate). Frames are mostly smooth gradients and flat fills:
+// a 1024^2 frame compresses in about a fifth of the time of zlib's level 1 with run-length
+// matches, which wisp used before, for 3-4 % more bytes (docs/performance.md, "Writing with
+// igzip"); the pixels are the same. Writing is on the per-frame path (the frame, the hair image
+// inside its SVG, the mask), so it is worth a dedicated encoder. PNGs are read with libpng
+// (png_decode.hpp).
 #pragma once
 
 #include <cstddef>
@@ -36,7 +38,7 @@ inline std::uint8_t unit_byte(float v) {
 // SSE2).
 void pack_rgb(const float* r, const float* g, const float* b, std::uint32_t* out, int n);
 
-// The PNG file's bytes. Throws std::runtime_error when libpng fails.
+// The PNG file's bytes. Throws std::runtime_error for a bad layout or when compression fails.
 std::vector<std::uint8_t> encode_png(const PixelRows& pixels);
 
 // Encodes and writes atomically (io/atomic_file.hpp). Throws std::runtime_error naming the file.

@@ -1,5 +1,7 @@
 // io/png_encode: what it writes decodes to the pixels it was given, from packed bytes and from
 // Cairo's 32-bit words; and its float-to-byte conversions round like std::lround.
+#include <png.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -42,6 +44,48 @@ TEST_CASE("PNG encoding round-trips RGB bytes and 0xXXRRGGBB words", "[io][png]"
     CHECK(got.pixels == rgb);
   }
   CHECK_THROWS(wisp::io::encode_png({rgb.data(), w, h, 4, size_t(w) * 4, true}));
+}
+
+TEST_CASE("PNG encoding round-trips 1 to 4 channels, padded rows, many blocks and IDAT chunks",
+          "[io][png]") {
+  // 1500 px rows of 4 channels are 6 KB: the encoder compresses about 256 KB of rows at a time,
+  // so 200 rows take several blocks. The noise does not compress, so the 3 MB image needs
+  // several IDAT chunks (at most 1 MB each). libpng checks every chunk's CRC while it reads.
+  for (const bool noise : {false, true}) {
+    for (int channels = 1; channels <= 4; ++channels) {
+      const int w = noise ? 1024 : 1500, h = noise ? 1024 : 200;
+      if (noise && channels != 3) continue;
+      const size_t stride = size_t(w) * channels + 5;  // padded rows
+      std::vector<std::uint8_t> data(stride * h, 0xee);
+      std::uint32_t state = 12345;
+      for (int y = 0; y < h; ++y)
+        for (int i = 0; i < w * channels; ++i) {
+          state = state * 1664525u + 1013904223u;
+          data[size_t(y) * stride + i] =
+              noise ? std::uint8_t(state >> 24) : std::uint8_t((i / channels) * 3 + y * 7 + i % 5);
+        }
+      const std::vector<std::uint8_t> png =
+          wisp::io::encode_png({data.data(), w, h, channels, stride});
+      png_image image{};
+      image.version = PNG_IMAGE_VERSION;
+      REQUIRE(png_image_begin_read_from_memory(&image, png.data(), png.size()));
+      static constexpr png_uint_32 kFormat[5] = {0, PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB,
+                                                 PNG_FORMAT_RGBA};
+      CHECK(image.format == kFormat[channels]);
+      image.format = kFormat[channels];
+      std::vector<std::uint8_t> decoded(PNG_IMAGE_SIZE(image));
+      REQUIRE(png_image_finish_read(&image, nullptr, decoded.data(), 0, nullptr));
+      INFO("channels " << channels << (noise ? ", noise" : ""));
+      REQUIRE(image.width == png_uint_32(w));
+      REQUIRE(image.height == png_uint_32(h));
+      int wrong = 0;
+      for (int y = 0; y < h; ++y)
+        for (int i = 0; i < w * channels; ++i)
+          wrong += decoded[size_t(y) * w * channels + i] != data[size_t(y) * stride + i];
+      CHECK(wrong == 0);
+      if (noise) CHECK(png.size() > (2u << 20));  // so it took three IDAT chunks
+    }
+  }
 }
 
 TEST_CASE("Channels become bytes as std::lround(clamp(v, 0, 1) * 255)", "[io][png]") {
