@@ -219,8 +219,8 @@ NearestPoint nearest_point(const Vector2d& q, const std::vector<LocalSegment>& l
 // nearest_point for each of the points (qx[i], qy[i]), i < count, one pass over the segments for
 // all of them, the points in the inner loop so that it vectorises. The arithmetic is
 // nearest_point's, operation for operation, with its roundings spelled out (Eigen's 2-vectors
-// multiply, then add the products; a + f d is one fused multiply-add), so the answers are the same
-// to the bit.
+// multiply, then add the products; a + f d is one fused multiply-add where the CPU has them), so
+// the answers are the same to the bit.
 __attribute__((optimize("fp-contract=off"))) void nearest_points(
     const double* qx, const double* qy, int count, const std::vector<LocalSegment>& local,
     const std::vector<Segment>& segments, NearestPoint* out) {
@@ -235,7 +235,11 @@ __attribute__((optimize("fp-contract=off"))) void nearest_points(
     for (int s = 0; s < count; ++s) {
       const double dot = (qx[s] - ax) * dx + (qy[s] - ay) * dy;
       const double f = flat ? 0.0 : std::clamp(dot / len2, 0.0, 1.0);
+#if defined(__FMA__)  // where Eigen's a + f d is one fused multiply-add
       const double ex = std::fma(f, dx, ax) - qx[s], ey = std::fma(f, dy, ay) - qy[s];
+#else
+      const double ex = (ax + f * dx) - qx[s], ey = (ay + f * dy) - qy[s];
+#endif
       const double dist2 = ex * ex + ey * ey;
       const bool nearer = dist2 < best2[s];
       best2[s] = nearer ? dist2 : best2[s];
