@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 
@@ -69,12 +70,13 @@ std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
   int in_block = 0;
   for (int y = 0; y < px.height; ++y) {
     const std::uint8_t* src = px.data + std::size_t(y) * px.stride;
-    if (px.xrgb32) {
-      const auto* words = reinterpret_cast<const std::uint32_t*>(src);
+    if (px.xrgb32) {  // native-endian words 0xXXRRGGBB
       for (int x = 0; x < px.width; ++x) {
-        row[3 * std::size_t(x)] = std::uint8_t(words[x] >> 16);
-        row[3 * std::size_t(x) + 1] = std::uint8_t(words[x] >> 8);
-        row[3 * std::size_t(x) + 2] = std::uint8_t(words[x]);
+        std::uint32_t word;
+        std::memcpy(&word, src + 4 * std::size_t(x), 4);
+        row[3 * std::size_t(x)] = std::uint8_t(word >> 16);
+        row[3 * std::size_t(x) + 1] = std::uint8_t(word >> 8);
+        row[3 * std::size_t(x) + 2] = std::uint8_t(word);
       }
     } else {
       std::copy(src, src + row_bytes, row.begin());
