@@ -10,8 +10,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
+
+#include "io/png_decode.hpp"
 
 namespace wisp::io {
 
@@ -32,6 +35,29 @@ struct ContactSheetLayout {
 // The layout for `count` frames of frame_width x frame_height pixels.
 ContactSheetLayout contact_sheet_layout(int count, int frame_width, int frame_height,
                                         const ContactSheetOptions& options);
+
+// The sheet of `count` frames, built a frame at a time and written at the end: for a caller that
+// reads the frames anyway (the previews read each frame once for the video and the sheet).
+class ContactSheet {
+ public:
+  // `numbers` as below. Throws std::runtime_error naming `path` for bad options, no frames or
+  // numbers of the wrong length.
+  ContactSheet(std::filesystem::path path, int count, std::vector<int> numbers,
+               const ContactSheetOptions& options = {});
+  // The next frame's tile; `source` names the frame in errors (a size other than the first's).
+  void add(const RgbImage& frame, const std::filesystem::path& source);
+  // Writes the sheet, once every frame was added; returns the layout.
+  ContactSheetLayout write();
+
+ private:
+  std::filesystem::path path_;
+  int count_ = 0, added_ = 0;
+  std::vector<int> numbers_;
+  ContactSheetOptions options_;
+  int frame_width_ = 0, frame_height_ = 0;
+  ContactSheetLayout layout_;
+  std::vector<std::uint8_t> sheet_;  // RGB rows of layout_.width pixels
+};
 
 // Reads `frames` (PNG files, all the same size) and writes the sheet to `path`
 // (.png). `numbers[i]` labels frames[i]; empty numbers label them 0, 1, 2... Returns the layout.

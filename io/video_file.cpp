@@ -74,7 +74,8 @@ bool encode(const VideoModule& m, const std::filesystem::path& tmp, int count, d
 }  // namespace
 
 std::string write_video(const std::filesystem::path& path,
-                        const std::vector<std::filesystem::path>& frames, double fps) {
+                        const std::vector<std::filesystem::path>& frames, double fps,
+                        const std::function<void(int, const RgbImage&)>& each_frame) {
   if (path.extension() != ".mp4")
     throw std::runtime_error(path.string() + ": the video must be a .mp4 file");
   if (frames.empty()) throw std::runtime_error(path.string() + ": no frames to write");
@@ -83,15 +84,20 @@ std::string write_video(const std::filesystem::path& path,
   const RgbImage first = read_frame(path, frames.front());
   const VideoModule& m = video_module(path);
   RgbImage current;
+  int shown = 0;  // frames handed to each_frame (a second codec's attempt reads them again)
   const auto frame = [&](int i) -> const unsigned char* {
-    if (i == 0) return first.pixels.data();
-    current = read_frame(path, frames[i]);
-    if (current.width != first.width || current.height != first.height)
-      throw std::runtime_error(path.string() + ": the frame " + frames[i].string() + " is " +
-                               std::to_string(current.width) + "x" +
-                               std::to_string(current.height) + ", the first frame " +
-                               std::to_string(first.width) + "x" + std::to_string(first.height));
-    return current.pixels.data();
+    const RgbImage* image = &first;
+    if (i > 0) {
+      current = read_frame(path, frames[i]);
+      if (current.width != first.width || current.height != first.height)
+        throw std::runtime_error(path.string() + ": the frame " + frames[i].string() + " is " +
+                                 std::to_string(current.width) + "x" +
+                                 std::to_string(current.height) + ", the first frame " +
+                                 std::to_string(first.width) + "x" + std::to_string(first.height));
+      image = &current;
+    }
+    if (each_frame && i == shown) each_frame(i, *image), ++shown;
+    return image->pixels.data();
   };
   std::string used;
   write_atomically(path, [&](const std::filesystem::path& tmp) {

@@ -8,10 +8,13 @@
 
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "io/png_decode.hpp"
 
 namespace wisp::io {
 
@@ -24,9 +27,12 @@ struct VideoModuleError : std::runtime_error {
 // Writes `frames` (PNG files, all of the same size) at `fps` frames per second.
 // Returns the fourcc that worked ("avc1" or "mp4v"). Throws std::runtime_error naming the file:
 // no frames, a frame that cannot be read or differs in size, a path not ending in .mp4, fps not
-// in (0, 1000], or no codec that writes a decodable file.
+// in (0, 1000], or no codec that writes a decodable file. `each_frame` (optional) is shown every
+// frame once, in order, with its index, as it is read: another writer of the same frames (the
+// contact sheet) need not read them again.
 std::string write_video(const std::filesystem::path& path,
-                        const std::vector<std::filesystem::path>& frames, double fps);
+                        const std::vector<std::filesystem::path>& frames, double fps,
+                        const std::function<void(int, const RgbImage&)>& each_frame = {});
 
 // Checks, before any frame is written, that a width x height video at `fps` can be written:
 // encodes one blank frame to a temporary file outside the output folder and reads it back, in a

@@ -335,10 +335,17 @@ void write_previews(const io::Scene& scene, double fps, FrameRange range, const 
     pngs.push_back(folder / frame_file_name(k, "png"));
     numbers.push_back(k);
   }
-  if (scene.render.video) io::write_video(folder / "preview.mp4", pngs, fps);
-  io::ContactSheetOptions sheet;
-  sheet.columns = scene.render.contact_sheet_columns;
-  io::write_contact_sheet(folder / "contact.png", pngs, numbers, sheet);
+  io::ContactSheetOptions options;
+  options.columns = scene.render.contact_sheet_columns;
+  if (!scene.render.video) {
+    io::write_contact_sheet(folder / "contact.png", pngs, numbers, options);
+    return;
+  }
+  // Each frame read once, for both.
+  io::ContactSheet sheet(folder / "contact.png", int(pngs.size()), numbers, options);
+  io::write_video(folder / "preview.mp4", pngs, fps,
+                  [&](int i, const io::RgbImage& frame) { sheet.add(frame, pngs[i]); });
+  sheet.write();
 }
 
 SvgAnimationStats write_animated_svg(double fps, FrameRange range, const fs::path& folder) {

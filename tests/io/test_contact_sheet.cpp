@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/contact_sheet.hpp"
+#include "io/png_decode.hpp"
 #include "tests/test_folder.hpp"
 
 namespace fs = std::filesystem;
@@ -103,5 +104,35 @@ TEST_CASE("contact sheet errors name the file", "[io][contact]") {
   CHECK_THROWS_WITH(wisp::io::write_contact_sheet(dir / "missing" / "c.png", frames, {}),
                     Catch::Contains("does not exist"));
   CHECK(!fs::exists(dir / "c.png"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a contact sheet built a frame at a time is write_contact_sheet's", "[io][contact]") {
+  // The previews hand the video's frames to a ContactSheet as they are read.
+  const fs::path dir = temp_dir();
+  const std::vector<fs::path> frames = flat_frames(dir, 4, 64, 48);
+  const wisp::io::ContactSheetLayout whole =
+      wisp::io::write_contact_sheet(dir / "whole.png", frames, {5, 6, 7, 8});
+  wisp::io::ContactSheet sheet(dir / "built.png", 4, {5, 6, 7, 8});
+  for (const fs::path& f : frames) sheet.add(wisp::io::read_png(f, "frame", 4096), f);
+  CHECK_THROWS_WITH(sheet.add(wisp::io::read_png(frames[0], "frame", 4096), frames[0]),
+                    Catch::Contains("more frames"));
+  const wisp::io::ContactSheetLayout built = sheet.write();
+  CHECK(built.width == whole.width);
+  CHECK(built.height == whole.height);
+  const cv::Mat a = cv::imread((dir / "whole.png").string()),
+                b = cv::imread((dir / "built.png").string());
+  REQUIRE(!a.empty());
+  CHECK(cv::norm(a, b, cv::NORM_INF) == 0);
+
+  // A frame of another size names itself; a sheet missing frames is not written.
+  fs::create_directories(dir / "other");
+  const std::vector<fs::path> other = flat_frames(dir / "other", 1, 32, 32);
+  wisp::io::ContactSheet short_sheet(dir / "short.png", 3, {});
+  short_sheet.add(wisp::io::read_png(frames[0], "frame", 4096), frames[0]);
+  CHECK_THROWS_WITH(short_sheet.add(wisp::io::read_png(other[0], "frame", 4096), other[0]),
+                    Catch::Contains(other[0].string()));
+  CHECK_THROWS_WITH(short_sheet.write(), Catch::Contains("1 of 3 frames"));
+  CHECK(!fs::exists(dir / "short.png"));
   fs::remove_all(dir);
 }

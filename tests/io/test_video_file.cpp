@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "io/png_decode.hpp"
 #include "io/video_file.hpp"
 #include "tests/test_folder.hpp"
 
@@ -60,9 +61,16 @@ TEST_CASE("a 10-frame synthetic video decodes to 10 frames, the same bytes twice
   CHECK(decoded.rows == 64);
   const cv::Mat first = cv::imread(frames[0].string());
   CHECK(cv::norm(decoded, first, cv::NORM_L1) / first.total() / 3 < 6.0);
-  // Deterministic, and nothing but the video is left in the folder.
+  // Deterministic, and nothing but the video is left in the folder. A reader of the same frames
+  // is shown each of them once, in order, and the video's bytes do not change.
   const std::string once = bytes(video);
-  wisp::io::write_video(video, frames, 24);
+  std::vector<int> shown;
+  wisp::io::write_video(video, frames, 24, [&](int i, const wisp::io::RgbImage& frame) {
+    shown.push_back(i);
+    CHECK(frame.width == 96);
+    CHECK(frame.pixels == wisp::io::read_png(frames[size_t(i)], "frame", 4096).pixels);
+  });
+  CHECK(shown == std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
   CHECK(bytes(video) == once);
   int partial = 0;
   for (const auto& e : fs::directory_iterator(dir))
