@@ -88,6 +88,21 @@ TEST_CASE("PNG encoding round-trips 1 to 4 channels, padded rows, many blocks an
   }
 }
 
+TEST_CASE("PNG encoding of a single pixel and of rows longer than a block", "[io][png]") {
+  for (const int w : {1, 100000}) {  // a 100000-pixel RGB row is 300 KB: one row a block
+    const int h = w == 1 ? 1 : 3;
+    std::vector<std::uint8_t> rgb(size_t(w) * h * 3);
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::uint8_t(i * 31 / 7);
+    const std::vector<std::uint8_t> png =
+        wisp::io::encode_png({rgb.data(), w, h, 3, size_t(w) * 3});
+    const wisp::io::RgbImage got = wisp::io::decode_png(png.data(), png.size(), 100000);
+    INFO("width " << w);
+    CHECK(got.width == w);
+    CHECK(got.height == h);
+    CHECK(got.pixels == rgb);
+  }
+}
+
 TEST_CASE("Channels become bytes as std::lround(clamp(v, 0, 1) * 255)", "[io][png]") {
   std::vector<float> v = {0.0f,
                           -0.0f,
