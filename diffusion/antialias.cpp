@@ -196,40 +196,27 @@ struct LocalSegment {
   int k, curve;      // index in the segment list, Segment::curve
 };
 
-// The point of the local segments nearest to q: which segment, where along it, how far.
+// The point of the local segments nearest to a point: which segment, where along it, how far.
 struct NearestPoint {
   const Segment* segment = nullptr;
   double along = 0, distance = std::numeric_limits<double>::infinity();
 };
 
-NearestPoint nearest_point(const Vector2d& q, const std::vector<LocalSegment>& local,
-                           const std::vector<Segment>& segments, int only_curve = -1) {
-  NearestPoint best;
-  double best2 = std::numeric_limits<double>::infinity();
-  for (const LocalSegment& g : local) {
-    if (only_curve >= 0 && g.curve != only_curve) continue;
-    const double f = g.len2 > 0 ? std::clamp((q - g.a).dot(g.d) / g.len2, 0.0, 1.0) : 0.0;
-    const double dist2 = (g.a + f * g.d - q).squaredNorm();
-    if (dist2 < best2) best2 = dist2, best.segment = &segments[g.k], best.along = f;
-  }
-  best.distance = std::sqrt(best2);
-  return best;
-}
-
-// nearest_point for each of the points (qx[i], qy[i]), i < count, one pass over the segments for
-// all of them, the points in the inner loop so that it vectorises. The arithmetic is
-// nearest_point's, operation for operation, with its roundings spelled out (Eigen's 2-vectors
-// multiply, then add the products; a + f d is one fused multiply-add where the CPU has them), so
-// the answers are the same to the bit.
+// The nearest point of the local segments (of curve `only_curve` alone, when it is not -1) to each
+// of the points (qx[i], qy[i]), i < count: one pass over the segments for all of them, the points
+// in the inner loop so that it vectorises. Its roundings are spelled out (the products summed
+// unfused, a + f d one fused multiply-add where the CPU has it), as the Eigen expression it
+// replaced computed them, so that pictures keep their bytes whatever the compiler contracts.
 __attribute__((optimize("fp-contract=off"))) void nearest_points(
     const double* qx, const double* qy, int count, const std::vector<LocalSegment>& local,
-    const std::vector<Segment>& segments, NearestPoint* out) {
+    const std::vector<Segment>& segments, NearestPoint* out, int only_curve = -1) {
   double best2[kMaxSamples], along[kMaxSamples];
   int best[kMaxSamples];
   for (int s = 0; s < count; ++s)
     best2[s] = std::numeric_limits<double>::infinity(), best[s] = -1, along[s] = 0;
   for (int i = 0; i < int(local.size()); ++i) {
     const LocalSegment& g = local[size_t(i)];
+    if (only_curve >= 0 && g.curve != only_curve) continue;
     const double ax = g.a.x(), ay = g.a.y(), dx = g.d.x(), dy = g.d.y(), len2 = g.len2;
     const bool flat = !(len2 > 0);
     for (int s = 0; s < count; ++s) {
@@ -382,7 +369,9 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             const auto centre_distance = [&](const Vector2d& centre, size_t c, int curve) {
               for (const CentreDistance& d : centre_distances)
                 if (d.centre == c && d.curve == curve) return d.distance;
-              const double d = nearest_point(centre, near, segments, curve).distance;
+              NearestPoint at;
+              nearest_points(&centre.x(), &centre.y(), 1, near, segments, &at, curve);
+              const double d = at.distance;
               centre_distances.push_back({c, curve, d});
               return d;
             };
