@@ -23,6 +23,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <type_traits>
@@ -82,6 +83,9 @@ struct Level {
   // inv_diag hold the diagonal only where a point is anchored (see diag_of()).
   std::vector<std::uint8_t> code;
   std::vector<std::uint8_t> alive;  // 1 on free points
+  // Coarse levels: 1 where the point's stored stencil is the level's plain one (see
+  // PlainPoints), copied from the one point that computed it. Set by each setup.
+  std::vector<std::uint8_t> plain;
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
   std::vector<float> e, rhs;  // channel planes, padded
@@ -145,6 +149,71 @@ std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
   return out;
 }
 
+// Coarse points whose prolongation cell and Galerkin stencil are the plain ones: every fine point
+// within 3 of their own (all that the cell and P^T A P read there) has the plain stencil. On the
+// finest level that is a free, unanchored point linked to four free neighbours; on a coarse level
+// a point whose stencil reads only stored values that are the level's plain ones (Level::plain:
+// the point, its west neighbour and the three to its north). Plain cells and stencils are equal to
+// the last bit, so one of them, `model` (the first that is to be rebuilt), is computed and copied
+// to the others: most of an image is away from curves, on every level.
+struct PlainPoints {
+  std::vector<std::uint8_t> flags;  // per padded coarse point
+  std::optional<size_t> model;      // none when no plain point is to be rebuilt
+  // Whether point kc takes the model's values instead of computing its own.
+  bool copied(size_t kc) const { return model && flags[kc] && kc != *model; }
+};
+
+PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::uint8_t>* rebuild,
+                         bool copies) {
+  PlainPoints out;
+  out.flags.assign(C.padded(), 0);
+  if (!copies || (F.nine_point && F.plain.empty())) return out;
+  const int fs = F.stride;
+  const auto plain_stencil = [&](size_t k) -> bool {
+    if (F.nine_point) {
+      const std::uint8_t* v = F.plain.data();
+      return v[k] && v[k - 1] && v[k - fs] && v[k - fs - 1] && v[k - fs + 1];
+    }
+    const std::uint8_t c = F.code[k];
+    const bool four = c & kCodeAnchored ? F.diag[k] == 4.0f : c >> kCodeLinksShift == 4;
+    return F.alive[k] && four && (c & kCodeEast) && (c & kCodeSouth) &&
+           (F.code[k - 1] & kCodeEast) && (F.code[k - fs] & kCodeSouth);
+  };
+  // Per fine row, per coarse column I: whether fine points 2I-3 .. 2I+3 of the row are all plain
+  // (a prefix count of the row); then per coarse point, whether rows 2J-3 .. 2J+3 all say so.
+  std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
+  for_rows(F.h, F.w, [&](int y0, int y1) {
+    std::vector<int> count(size_t(F.w) + 1, 0);
+    for (int y = y0; y < y1; ++y) {
+      const size_t k0 = F.at(0, y);
+      for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + !plain_stencil(k0 + x);
+      std::uint8_t* row = &columns[size_t(y) * C.w];
+      for (int I = 0; I < C.w; ++I) {
+        const int x0 = 2 * I - 3, x1 = 2 * I + 4;
+        row[I] = x0 >= 0 && x1 <= F.w && count[x1] == count[x0];
+      }
+    }
+  });
+  for_rows(C.h, C.w * 7, [&](int J0, int J1) {
+    for (int J = J0; J < J1; ++J) {
+      const int y0 = 2 * J - 3, y1 = 2 * J + 4;
+      if (y0 < 0 || y1 > F.h) continue;
+      std::uint8_t* o = &out.flags[C.at(0, J)];
+      for (int I = 0; I < C.w; ++I) o[I] = 1;
+      for (int y = y0; y < y1; ++y) {
+        const std::uint8_t* in = &columns[size_t(y) * C.w];
+        for (int I = 0; I < C.w; ++I) o[I] &= in[I];
+      }
+    }
+  });
+  for (size_t k = 0; k < out.flags.size(); ++k)
+    if (out.flags[k] && (!rebuild || (*rebuild)[k])) {
+      out.model = k;
+      break;
+    }
+  return out;
+}
+
 // How far, in fine points, a change of the fine operator reaches into the coarse level: a coarse
 // point's Galerkin stencil reads the stencils of the fine points within 1 of its own and the
 // prolongation rows of those within 2; a prolongation row reads the stencils within 1 of its
@@ -191,9 +260,11 @@ class Multigrid {
   std::vector<std::uint8_t> build_finest(const std::vector<std::uint8_t>& fixed, bool full);
   std::vector<std::uint8_t> build_coarse(int l, const std::vector<std::uint8_t>* changed);
   // prolong_[l], once levels_[l + 1] knows its points
-  void build_prolongation(int l, const std::vector<std::uint8_t>* rebuild);
+  void build_prolongation(int l, const std::vector<std::uint8_t>* rebuild,
+                          const PlainPoints& plain);
   // The operator of levels_[l + 1]: P^T A_l P
-  std::vector<std::uint8_t> galerkin_product(int l, const std::vector<std::uint8_t>* rebuild);
+  std::vector<std::uint8_t> galerkin_product(int l, const std::vector<std::uint8_t>* rebuild,
+                                             const PlainPoints& plain);
   void build_coarsest();
   // `row_done`, when given, is called once for every row y of the level as soon as rows y-1..y+1
   // have their final values (rows in parallel), while they are still in cache.
@@ -387,33 +458,37 @@ std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
   C.stride = C.w + 2;
   C.nine_point = true;
   const size_t nc = C.padded();
+  std::vector<std::uint8_t> rebuild, alive_changed;
   if (!changed) {
     C.alive.assign(nc, 0);
     for (int J = 0; J < C.h; ++J)
       for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
-    build_prolongation(l, nullptr);
-    return galerkin_product(l, nullptr);
+  } else {
+    rebuild = near_changed(F, C, *changed, kChangeReach);
+    alive_changed.assign(nc, 0);
+    for (int J = 0; J < C.h; ++J)
+      for (int I = 0; I < C.w; ++I) {
+        const size_t kc = C.at(I, J);
+        if (!rebuild[kc]) continue;
+        const std::uint8_t alive = F.alive[F.at(2 * I, 2 * J)];
+        alive_changed[kc] = C.alive[kc] != alive;
+        C.alive[kc] = alive;
+      }
   }
-  const std::vector<std::uint8_t> rebuild = near_changed(F, C, *changed, kChangeReach);
-  std::vector<std::uint8_t> alive_changed(nc, 0);
-  for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) {
-      const size_t kc = C.at(I, J);
-      if (!rebuild[kc]) continue;
-      const std::uint8_t alive = F.alive[F.at(2 * I, 2 * J)];
-      alive_changed[kc] = C.alive[kc] != alive;
-      C.alive[kc] = alive;
-    }
-  build_prolongation(l, &rebuild);
-  std::vector<std::uint8_t> out = galerkin_product(l, &rebuild);
-  for (size_t k = 0; k < nc; ++k) out[k] |= alive_changed[k];
+  const std::vector<std::uint8_t>* points = changed ? &rebuild : nullptr;
+  PlainPoints plain = plain_points(F, C, points, options_.copy_plain_stencils);
+  build_prolongation(l, points, plain);
+  std::vector<std::uint8_t> out = galerkin_product(l, points, plain);
+  for (size_t k = 0; k < alive_changed.size(); ++k) out[k] |= alive_changed[k];
+  C.plain = std::move(plain.flags);
   return out;
 }
 
 // Operator-dependent prolongation (Dendy 1982) from level l+1 into level l: each fine point
 // interpolates from the coarse points around it with weights from its own stencil.
 template <int NC>
-void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* rebuild) {
+void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* rebuild,
+                                       const PlainPoints& plain) {
   const Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const size_t nc = C.padded();
@@ -441,12 +516,25 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
       v->assign(nc, 0.0f);
   const auto alive_c = [&](int I, int J) { return float(C.alive[C.at(I, J)]); };
   // Edge points first: the cell centres interpolate from them. Every weight of a rebuilt cell is
-  // written (0 where its fine point is fixed or outside), so no earlier value stays.
+  // written (0 where its fine point is fixed or outside), so no earlier value stays. Plain cells
+  // take the model's weights once it has them (before the centres, which read the edges').
   const auto cells = [&](const auto& body) {
     for_rows(C.h, C.w * 8, [&](int J0, int J1) {
       for (int J = J0; J < J1; ++J)
-        for (int I = 0; I < C.w; ++I)
-          if (!rebuild || (*rebuild)[C.at(I, J)]) body(I, J, C.at(I, J));
+        for (int I = 0; I < C.w; ++I) {
+          const size_t kc = C.at(I, J);
+          if ((!rebuild || (*rebuild)[kc]) && !plain.copied(kc)) body(I, J, kc);
+        }
+    });
+  };
+  const auto copy_plain = [&](std::initializer_list<std::vector<float>*> weights) {
+    if (!plain.model) return;
+    for_rows(C.h, C.w, [&](int J0, int J1) {
+      for (std::vector<float>* v : weights) {
+        const float model = (*v)[*plain.model];
+        for (size_t kc = C.at(0, J0); kc < C.at(0, J1); ++kc)
+          if ((!rebuild || (*rebuild)[kc]) && plain.copied(kc)) (*v)[kc] = model;
+      }
     });
   };
   cells([&](int I, int J, size_t kc) {
@@ -478,6 +566,7 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
     P.y0[kc] = y0;
     P.y1[kc] = y1;
   });
+  copy_plain({&P.x0, &P.x1, &P.y0, &P.y1});
   const int cs = C.stride;
   cells([&](int I, int J, size_t kc) {
     float c00 = 0, c10 = 0, c01 = 0, c11 = 0;
@@ -497,34 +586,7 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
     P.c01[kc] = c01;
     P.c11[kc] = c11;
   });
-}
-
-// Coarse points of the finest level whose Galerkin stencil is the plain one: every fine point
-// within 3 of their own (all that P^T A P reads there) is free, unanchored and linked to four free
-// neighbours. Their stencils are equal to the last bit, so one of them is computed and copied to
-// the others: most of an image is away from curves. Returns a flag per padded coarse point.
-std::vector<std::uint8_t> plain_points(const Level& F, const Level& C) {
-  const int fs = F.stride;
-  // Integral image of the fine points that are not plain.
-  std::vector<int> sum(size_t(F.w + 1) * (F.h + 1), 0);
-  const auto S = [&](int x, int y) -> int& { return sum[size_t(y) * (F.w + 1) + x]; };
-  for (int y = 0; y < F.h; ++y)
-    for (int x = 0; x < F.w; ++x) {
-      const size_t k = F.at(x, y);
-      const std::uint8_t c = F.code[k];
-      const bool four = c & kCodeAnchored ? F.diag[k] == 4.0f : c >> kCodeLinksShift == 4;
-      const bool plain = F.alive[k] && four && (c & kCodeEast) && (c & kCodeSouth) &&
-                         (F.code[k - 1] & kCodeEast) && (F.code[k - fs] & kCodeSouth);
-      S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + !plain;
-    }
-  std::vector<std::uint8_t> out(C.padded(), 0);
-  for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) {
-      const int x0 = 2 * I - 3, y0 = 2 * J - 3, x1 = 2 * I + 4, y1 = 2 * J + 4;
-      if (x0 < 0 || y0 < 0 || x1 > F.w || y1 > F.h) continue;
-      out[C.at(I, J)] = S(x1, y1) - S(x0, y1) - S(x1, y0) + S(x0, y0) == 0;
-    }
-  return out;
+  copy_plain({&P.c00, &P.c10, &P.c01, &P.c11});
 }
 
 // Row p of A P, p = (x, y) with x % 2 == PX and y % 2 == PY (see galerkin_product): the 3x3
@@ -557,8 +619,9 @@ inline void ap_row(const float (&coeff)[9], const float* const (&w)[9], float* o
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
 // coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1).
 template <int NC>
-std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
-    int l, const std::vector<std::uint8_t>* rebuild) {
+std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
+                                                          const std::vector<std::uint8_t>* rebuild,
+                                                          const PlainPoints& plain) {
   const Level& F = levels_[l];
   Level& C = levels_[l + 1];
   const size_t nc = C.padded();
@@ -596,25 +659,13 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
       w[3] = P.c11[kc];
     }
   };
-  // On the finest level, plain coarse points (plain_points) are computed once, at `model` (the
-  // first one that is wanted).
-  std::vector<std::uint8_t> plain;
-  size_t model = 0;
-  if (!F.nine_point) {
-    plain = plain_points(F, C);
-    size_t k = 0;
-    while (k < nc && !(plain[k] && wanted(k))) ++k;
-    if (k == nc)
-      plain.clear();
-    else
-      model = k;
-  }
+  // Plain coarse points (plain_points) are computed once, at the model.
   const auto computed = [&](int I, int J) {
     const size_t kc = C.at(I, J);
-    return wanted(kc) && (plain.empty() || !plain[kc] || kc == model);
+    return wanted(kc) && !plain.copied(kc);
   };
   // Every coarse point computed: every row of P and A P is needed.
-  const bool everything = !rebuild && plain.empty();
+  const bool everything = !rebuild && !plain.model;
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
     // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last, computed only
     // where a computed coarse point reads them: A P rows within 1 of its fine point (need 2), P
@@ -720,14 +771,14 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(
                    float(-acc[2]), float(-acc[3]), float(-acc[4])});
       }
   });
-  if (plain.empty()) return changed;
+  if (!plain.model) return changed;
+  const size_t model = *plain.model;
   const float stencil[6] = {C.diag[model], C.inv_diag[model], C.ae[model],
                             C.as[model],   C.ase[model],      C.asw[model]};
-  for (int J = 0; J < C.h; ++J)
-    for (int I = 0; I < C.w; ++I) {
-      const size_t kc = C.at(I, J);
-      if (plain[kc] && kc != model && wanted(kc)) store(kc, stencil);
-    }
+  for_rows(C.h, C.w, [&](int J0, int J1) {
+    for (size_t kc = C.at(0, J0); kc < C.at(0, J1); ++kc)
+      if (plain.copied(kc) && wanted(kc)) store(kc, stencil);
+  });
   return changed;
 }
 

@@ -294,6 +294,39 @@ TEST_CASE("a solve after another of the same size rebuilds what changed, to the 
   CHECK(solve_multigrid(b).planes == b_fresh.planes);
 }
 
+TEST_CASE("plain stencils copied from one point give the bits of stencils computed one by one",
+          "[multigrid]") {
+  // Away from curves every coarse point's prolongation weights and Galerkin stencil are the same;
+  // the solver computes one and copies it, on every level, wherever the fine points it reads are
+  // plain. A copy where something within reach is not plain (a curve, an anchor, a barrier, the
+  // border, a sealed pocket) would change the operator, and so the answer's bits.
+  SolverOptions copies, computed;
+  computed.copy_plain_stencils = false;
+  for (unsigned seed : {3u, 11u, 29u}) {
+    std::mt19937 rng(seed);
+    std::vector<DiffusionCurve> curves;
+    for (int k = 0; k < 5; ++k) {
+      curves.push_back(wisp::test::random_curve(rng, 150, 3));
+      if (k % 2) curves.back().left_boundary = Boundary::Neumann;
+    }
+    auto pocket = circle(60 + (20 * seed) % 90, 150, 9, Color(1, 0, 0), Color(0, 0, 1));
+    pocket.left_boundary = Boundary::Neumann;
+    curves.push_back(pocket);
+    const Problem p = rasterize(curves, 260, 230);
+    for (SolverOptions* o : {&copies, &computed}) o->max_error = seed == 3 ? kEightBitError : 0;
+    // Each solve sets up from nothing (a kept workspace would keep the first one's operators).
+    const auto fresh = [&](const SolverOptions& o) {
+      release_solver_workspaces();
+      return solve_multigrid(p, o);
+    };
+    const Solution a = fresh(copies), b = fresh(computed);
+    INFO("seed " << seed);
+    CHECK(a.stats.levels >= 6);
+    CHECK(a.stats.cycles == b.stats.cycles);
+    CHECK(a.planes == b.planes);
+  }
+}
+
 TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewer", "[multigrid]") {
   const Problem p = random_layout(128, 17, 6, false);
   SolverOptions tight;
