@@ -101,6 +101,19 @@ int run_solver(const std::vector<std::string>& args) {
         "\"repeat_setup_ms\": %.2f",
         n, mg * 1000, stats.setup_ms, stats.cycles, stats.final_residual, repeat * 1000,
         repeat_stats.setup_ms);
+    // How the stopping rule got there: the relative residual after the FMG start and after each
+    // cycle, and the estimated largest error (in 8-bit steps; null before the rule can estimate).
+    const auto list = [](const std::vector<double>& v, double scale) {
+      std::string out;
+      char number[32];
+      for (double x : v) {
+        std::snprintf(number, sizeof number, "%.3g", scale * x);
+        out += (out.empty() ? "" : ", ") + std::string(std::isfinite(x) ? number : "null");
+      }
+      return "[" + out + "]";
+    };
+    std::printf(", \"residuals\": %s, \"error_estimates_255\": %s",
+                list(stats.residual_history, 1).c_str(), list(stats.error_estimates, 255).c_str());
     if (n <= cg_max) {
       const auto ldlt =
           diffusion::solve_reference(problem, diffusion::ReferenceMethod::SimplicialLDLT);
