@@ -244,10 +244,11 @@ struct Resolver {
       // in front of every wisp makes the face its own: not hair, unless the hair base covers
       // the face and is nearer than that occluder (it lies on the head, behind every wisp).
       // The candidates are tried nearest bound first (occluders first), so that the wisps
-      // wholly behind the front-most so far need no lookup.
+      // wholly behind the front-most so far need no lookup. Usually two or three are tried:
+      // each is picked from the rest as it is needed rather than all sorted first.
       double best = INFINITY;
       bool on_base = false;
-      std::vector<std::pair<double, int>>& order = scratch_order;
+      std::vector<std::pair<double, int>>& order = scratch_order;  // (bound, wisp)
       order.clear();
       for (const auto& [w, _] : cover(f)) {
         if (w == base_id())
@@ -255,8 +256,9 @@ struct Resolver {
         else
           order.emplace_back(w < n_wisps() ? nearest[w] : -INFINITY, w);
       }
-      std::sort(order.begin(), order.end());
-      for (const auto& [bound, w] : order) {
+      for (auto rest = order.begin(); rest != order.end(); ++rest) {
+        std::iter_swap(rest, std::min_element(rest, order.end()));
+        const auto [bound, w] = *rest;
         if (bound > best) break;
         const double z = w < n_wisps() ? band_depth(wisps[w], cells[w], sample[f]).depth
                                        : options.occluders[w - n_wisps()].depth(sample[f]);

@@ -53,6 +53,7 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
             {"hatching", r.time.hatching},
             {"rasterize", r.time.rasterize},
             {"solve", r.time.solve},
+            {"solve_setup", r.solve.setup_ms},
             {"antialias", r.time.antialias},
             {"blur", r.time.blur},
             {"write", write_ms},
