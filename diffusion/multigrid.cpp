@@ -589,35 +589,143 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
   copy_plain({&P.c00, &P.c10, &P.c01, &P.c11});
 }
 
-// Row p of A P, p = (x, y) with x % 2 == PX and y % 2 == PY (see galerkin_product): the 3x3
-// block of coarse points from base(p), as sum over the stencil's nine points q of coeff(q) times
-// the P row of q (w: the P rows of p's neighbours, row by row). The terms are added in the order
-// of q, then of q's weights, each as one fused multiply-add into its coarse point's sum, which
-// starts at +0: a zero coupling or weight adds +-0 and leaves it as it is, so no term is tested.
-// Everything is indexed by constants, so the nine sums stay in registers.
-template <int PX, int PY>
-inline void ap_row(const float (&coeff)[9], const float* const (&w)[9], float* out) {
-  float o[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-#pragma GCC unroll 3
-  for (int dy = -1; dy <= 1; ++dy)
-#pragma GCC unroll 3
-    for (int dx = -1; dx <= 1; ++dx) {
-      // ((x + dx) >> 1) - ((x - 1) >> 1) for x of parity PX, and the same for y.
-      const int ox = ((PX + dx) >> 1) - ((PX - 1) >> 1), oy = ((PY + dy) >> 1) - ((PY - 1) >> 1);
-      const float c = coeff[(dy + 1) * 3 + dx + 1];
-      const float* q = w[(dy + 1) * 3 + dx + 1];
-      o[oy * 3 + ox] += c * q[0];
-      o[oy * 3 + ox + 1] += c * q[1];
-      o[(oy + 1) * 3 + ox] += c * q[2];
-      o[(oy + 1) * 3 + ox + 1] += c * q[3];
+// What the rows of A P of one fine row read (see ap_rows), as plain pointers.
+struct ApInputs {
+  const float* coeff;  // the row's stencils (ap_coefficients): coeff[m * lanes + I + 1]
+  int lanes;
+  const float *x0, *x1, *y0, *y1, *c00, *c10, *c01, *c11;  // Prolongation, by padded coarse index
+  const std::uint8_t* alive;                               // the fine level's, by padded index
+  size_t cell_row[3];  // C.at(0, (y + dy) >> 1) for dy = -1, 0, 1
+  size_t fine_row[3];  // F.at(0, y + dy)
+};
+
+// The stencils of the fine points x = 2I + PX of row y, lanes I in [i0, i1), as the rows of A
+// that ap_rows multiplies: coeff[m * lanes + I + 1] for the nine points m = nw, n, ne, w, self, e,
+// sw, s, se (couplings negated), all 0 where the point is not alive. The finest level's corners
+// are not written: ap_rows does not read them there (they are 0).
+template <int PX>
+void ap_coefficients(const Level& F, int y, int i0, int i1, float* coeff, int lanes) {
+  const int fs = F.stride;
+  const size_t row = F.at(PX, y);
+  const std::uint8_t* alive = F.alive.data();
+  float* const c[9] = {coeff + 1,
+                       coeff + lanes + 1,
+                       coeff + 2 * lanes + 1,
+                       coeff + 3 * lanes + 1,
+                       coeff + 4 * lanes + 1,
+                       coeff + 5 * lanes + 1,
+                       coeff + 6 * lanes + 1,
+                       coeff + 7 * lanes + 1,
+                       coeff + 8 * lanes + 1};
+  // Every load is made (the arrays are padded), and only then selected: no branch, so that the
+  // loops vectorise; ivdep: `coeff` overlaps none of the level's arrays.
+  if (!F.code.empty()) {
+    const std::uint8_t* code = F.code.data();
+    const float* diag = F.diag.data();
+#pragma GCC ivdep
+    for (int I = i0; I < i1; ++I) {
+      const size_t k = row + 2 * size_t(I);
+      const std::uint8_t own = code[k], west = code[k - 1], north = code[k - fs];
+      const bool a = alive[k];
+      const float anchored = diag[k], links = kLinksDiag[own >> kCodeLinksShift];
+      c[1][I] = a ? (north & kCodeSouth ? -1.0f : -0.0f) : 0.0f;
+      c[3][I] = a ? (west & kCodeEast ? -1.0f : -0.0f) : 0.0f;
+      c[4][I] = a ? (own & kCodeAnchored ? anchored : links) : 0.0f;
+      c[5][I] = a ? (own & kCodeEast ? -1.0f : -0.0f) : 0.0f;
+      c[7][I] = a ? (own & kCodeSouth ? -1.0f : -0.0f) : 0.0f;
     }
-  for (int m = 0; m < 9; ++m) out[m] = o[m];
+    return;
+  }
+  const float *diag = F.diag.data(), *ae = F.ae.data(), *as = F.as.data(), *ase = F.ase.data(),
+              *asw = F.asw.data();
+#pragma GCC ivdep
+  for (int I = i0; I < i1; ++I) {
+    const size_t k = row + 2 * size_t(I);
+    // Times 0 or 1 rather than selected (a select of a load became a masked load, which does
+    // not vectorise at a stride of 2): a dead point's coefficients may be -0 instead of +0, which
+    // adds the same nothing to the sums.
+    const float a = alive[k];
+    c[0][I] = -ase[k - fs - 1] * a;
+    c[1][I] = -as[k - fs] * a;
+    c[2][I] = -asw[k - fs + 1] * a;
+    c[3][I] = -ae[k - 1] * a;
+    c[4][I] = diag[k] * a;
+    c[5][I] = -ae[k] * a;
+    c[6][I] = -asw[k] * a;
+    c[7][I] = -as[k] * a;
+    c[8][I] = -ase[k] * a;
+  }
 }
+
+// One term of row p of A P (see ap_rows): the coefficient of p's neighbour q = p + (DX, DY)
+// times q's row of P, whose at most four weights go to the corners of q's cell: which of them
+// can be other than 0 follows from q's parity, and only those are added (a weight that is 0
+// would add +-0, which leaves a sum that starts at +0 as it is).
+template <int PX, int PY, int DX, int DY>
+inline void ap_term(const ApInputs& in, int I, float (&o)[9]) {
+  // q's cell column minus I, and the place of q's cell in p's 3x3 block of coarse points.
+  constexpr int off = (PX + DX) >> 1;
+  constexpr int ox = off - ((PX - 1) >> 1), oy = ((PY + DY) >> 1) - ((PY - 1) >> 1);
+  constexpr bool odd_x = (PX + DX) & 1, odd_y = (PY + DY) & 1;
+  const float c = in.coeff[((DY + 1) * 3 + DX + 1) * in.lanes + I + 1];
+  const size_t kq = in.cell_row[DY + 1] + size_t(I + off);
+  if constexpr (!odd_x && !odd_y) {
+    // A coarse point itself: weight 1, or 0 where it is not alive.
+    o[oy * 3 + ox] += c * (in.alive[in.fine_row[DY + 1] + 2 * size_t(I + off)] ? 1.0f : 0.0f);
+  } else if constexpr (!odd_y) {
+    o[oy * 3 + ox] += c * in.x0[kq];
+    o[oy * 3 + ox + 1] += c * in.x1[kq];
+  } else if constexpr (!odd_x) {
+    o[oy * 3 + ox] += c * in.y0[kq];
+    o[(oy + 1) * 3 + ox] += c * in.y1[kq];
+  } else {
+    o[oy * 3 + ox] += c * in.c00[kq];
+    o[oy * 3 + ox + 1] += c * in.c10[kq];
+    o[(oy + 1) * 3 + ox] += c * in.c01[kq];
+    o[(oy + 1) * 3 + ox + 1] += c * in.c11[kq];
+  }
+}
+
+// Rows p of A P for the fine points x = 2I + PX, lanes I in [i0, i1), of a fine row y of parity
+// PY: out[m * lanes + I + 1] for the 3x3 block m of coarse points from base(p) = ((x-1)>>1,
+// (y-1)>>1). Row p of A P is the sum over the stencil's points q of coeff(q) times the P row of
+// q; the terms are added in the order of q (row by row), then of q's weights, each as one fused
+// multiply-add into its coarse point's sum, which starts at +0. A point that is not alive has
+// coefficients 0 and so a row of +0. One lane is one fine point, with no branch: the loop
+// vectorises. The finest level's stencils have no corners (kNine false).
+template <int PX, int PY, bool kNine>
+void ap_rows(const ApInputs& inputs, int i0, int i1, float* out) {
+  const ApInputs in = inputs;  // a local copy: its pointers are not reloaded in the loop
+  // ivdep: `out` overlaps none of the inputs, so the lanes are independent.
+#pragma GCC ivdep
+  for (int I = i0; I < i1; ++I) {
+    float o[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    if constexpr (kNine) ap_term<PX, PY, -1, -1>(in, I, o);
+    ap_term<PX, PY, 0, -1>(in, I, o);
+    if constexpr (kNine) ap_term<PX, PY, 1, -1>(in, I, o);
+    ap_term<PX, PY, -1, 0>(in, I, o);
+    ap_term<PX, PY, 0, 0>(in, I, o);
+    ap_term<PX, PY, 1, 0>(in, I, o);
+    if constexpr (kNine) ap_term<PX, PY, -1, 1>(in, I, o);
+    ap_term<PX, PY, 0, 1>(in, I, o);
+    if constexpr (kNine) ap_term<PX, PY, 1, 1>(in, I, o);
+    for (int m = 0; m < 9; ++m) out[m * in.lanes + I + 1] = o[m];
+  }
+}
+
+// ap_rows by the parities of x and y and the level's kind: kApRows[px | py << 1 | nine << 2].
+using ApRowsFn = void (*)(const ApInputs&, int, int, float*);
+constexpr ApRowsFn kApRows[8] = {ap_rows<0, 0, false>, ap_rows<1, 0, false>, ap_rows<0, 1, false>,
+                                 ap_rows<1, 1, false>, ap_rows<0, 0, true>,  ap_rows<1, 0, true>,
+                                 ap_rows<0, 1, true>,  ap_rows<1, 1, true>};
 
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
-// coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1).
+// coarse points whose corner is base(p) = ((x-1)>>1, (y-1)>>1). Both products run a row at a
+// time over arrays of lanes, one lane a column (the fine points of one parity of x, the coarse
+// points of a row), so that they vectorise; each lane adds its terms in the order of the one-point
+// formula, so the stencils have the bits that computing them point by point gives.
 template <int NC>
 std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
                                                           const std::vector<std::uint8_t>* rebuild,
@@ -640,136 +748,123 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     for (int m = 0; m < 6; ++m) c |= update((*arrays[m])[kc], v[m]);
     if (rebuild) changed[kc] = c;
   };
-  const auto p_row = [&](int x, int y, float w[4]) {
-    w[0] = w[1] = w[2] = w[3] = 0.0f;
-    if (x < 0 || y < 0 || x >= F.w || y >= F.h || !F.alive[F.at(x, y)]) return;
-    const size_t kc = C.at(x >> 1, y >> 1);
-    if (!(x & 1) && !(y & 1)) {
-      w[0] = 1.0f;
-    } else if (!(y & 1)) {
-      w[0] = P.x0[kc];
-      w[1] = P.x1[kc];
-    } else if (!(x & 1)) {
-      w[0] = P.y0[kc];
-      w[2] = P.y1[kc];
-    } else {
-      w[0] = P.c00[kc];
-      w[1] = P.c10[kc];
-      w[2] = P.c01[kc];
-      w[3] = P.c11[kc];
-    }
-  };
   // Plain coarse points (plain_points) are computed once, at the model.
   const auto computed = [&](int I, int J) {
     const size_t kc = C.at(I, J);
     return wanted(kc) && !plain.copied(kc);
   };
-  // Every coarse point computed: every row of P and A P is needed.
-  const bool everything = !rebuild && !plain.model;
+  // Lane I + 1 holds column I, from -1 (a column of zeros: no fine point x = -1) to C.w.
+  const int lanes = C.w + 2;
+  // The fine points of each parity of x: x = 2I + parity < F.w.
+  const int columns[2] = {(F.w + 1) / 2, F.w / 2};
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
-    // P rows of fine rows y_first-1 .. y_last+1, then A P rows of y_first .. y_last, computed only
-    // where a computed coarse point reads them: A P rows within 1 of its fine point (need 2), P
-    // rows within 2 (need >= 1). Only those are written, and read.
+    // The coarse rows with a point to compute, and the columns [i_lo, i_hi) that hold them.
+    std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0);
+    int i_lo = C.w, i_hi = 0;
+    for (int J = J0; J < J1; ++J)
+      for (int I = 0; I < C.w; ++I)
+        if (computed(I, J)) {
+          row_wanted[J - J0] = 1;
+          i_lo = std::min(i_lo, I);
+          i_hi = std::max(i_hi, I + 1);
+        }
+    if (i_lo >= i_hi) return;
+    // Rows of A P of fine rows y_first .. y_first + y_count - 1 (those within 1 of a wanted coarse
+    // row), lanes i_lo - 1 .. i_hi - 1 of each parity: all that the coarse points read.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
-    const int pw_stride = F.w + 2;
-    std::vector<std::uint8_t> need(size_t(y_count + 2) * pw_stride, everything ? 2 : 0);
-    const auto need_at = [&](int x, int y) -> std::uint8_t& {
-      return need[size_t(y - y_first + 1) * pw_stride + (x + 1)];
+    const size_t row_floats = size_t(2) * 9 * lanes;
+    const std::unique_ptr<float[]> ap(new float[size_t(y_count) * row_floats]);
+    const std::unique_ptr<float[]> coeff(new float[size_t(9) * lanes]);
+    const auto ap_at = [&](int y, int parity) {
+      return &ap[size_t(y - y_first) * row_floats + size_t(parity) * 9 * lanes];
     };
-    if (!everything) {
-      bool any = false;
-      for (int J = J0; J < J1; ++J)
-        for (int I = 0; I < C.w; ++I) {
-          if (!computed(I, J)) continue;
-          any = true;
-          if (!C.alive[C.at(I, J)]) continue;
-          for (int y = std::max(2 * J - 2, y_first - 1); y <= std::min(2 * J + 2, F.h); ++y)
-            for (int x = std::max(2 * I - 2, -1); x <= std::min(2 * I + 2, F.w); ++x) {
-              std::uint8_t& n = need_at(x, y);
-              n = std::max<std::uint8_t>(
-                  n, std::abs(x - 2 * I) <= 1 && std::abs(y - 2 * J) <= 1 ? 2 : 1);
-            }
-        }
-      if (!any) return;
-    }
-    const std::unique_ptr<float[]> pw(new float[size_t(y_count + 2) * pw_stride * 4]);
-    const auto pw_at = [&](int x, int y) {
-      return &pw[(size_t(y - y_first + 1) * pw_stride + (x + 1)) * 4];
-    };
-    for (int y = y_first - 1; y <= y_first + y_count; ++y)
-      for (int x = -1; x <= F.w; ++x)
-        if (need_at(x, y)) p_row(x, y, pw_at(x, y));
-    const std::unique_ptr<float[]> ap(new float[size_t(y_count) * F.w * 9]);
-    for (int yy = 0; yy < y_count; ++yy) {
-      const int y = y_first + yy;
-      if (y < 0 || y >= F.h) continue;
-      for (int x = 0; x < F.w; ++x) {
-        const size_t k = F.at(x, y);
-        if (need_at(x, y) != 2) continue;
-        float* out = &ap[(size_t(yy) * F.w + x) * 9];
-        std::fill_n(out, 9, 0.0f);
-        if (!F.alive[k]) continue;
-        const Stencil st = stencil_at(F, k);
-        const float coeff[9] = {-st.nw, -st.n, -st.ne, -st.w, st.d, -st.e, -st.sw, -st.s, -st.se};
-        const float* w[9];
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) w[(dy + 1) * 3 + dx + 1] = pw_at(x + dx, y + dy);
-        switch ((x & 1) | (y & 1) << 1) {
-          case 0:
-            ap_row<0, 0>(coeff, w, out);
-            break;
-          case 1:
-            ap_row<1, 0>(coeff, w, out);
-            break;
-          case 2:
-            ap_row<0, 1>(coeff, w, out);
-            break;
-          default:
-            ap_row<1, 1>(coeff, w, out);
-        }
+    const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
+    for (int y = y_first; y < y_first + y_count; ++y) {
+      const int J = y >> 1;  // the wanted rows that read fine row y: J and, for odd y, J + 1
+      const bool read = (J >= J0 && row_wanted[J - J0]) ||
+                        ((y & 1) && J + 1 < J1 && J + 1 >= J0 && row_wanted[J + 1 - J0]);
+      if (!read) continue;
+      for (int parity = 0; parity < 2; ++parity) {
+        float* out = ap_at(y, parity);
+        // Columns outside the level, and rows outside it, are rows of zeros.
+        const int b_lo = std::max(a_lo, 0);
+        const int b_hi = y < 0 || y >= F.h ? b_lo : std::min(a_hi, columns[parity]);
+        for (int I = a_lo; I < b_lo; ++I)
+          for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
+        for (int I = std::max(b_hi, b_lo); I < a_hi; ++I)
+          for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
+        if (b_lo >= b_hi) continue;
+        ApInputs in{coeff.get(),
+                    lanes,
+                    P.x0.data(),
+                    P.x1.data(),
+                    P.y0.data(),
+                    P.y1.data(),
+                    P.c00.data(),
+                    P.c10.data(),
+                    P.c01.data(),
+                    P.c11.data(),
+                    F.alive.data(),
+                    {C.at(0, (y - 1) >> 1), C.at(0, y >> 1), C.at(0, (y + 1) >> 1)},
+                    {F.at(0, y - 1), F.at(0, y), F.at(0, y + 1)}};
+        (parity ? ap_coefficients<1> : ap_coefficients<0>)(F, y, b_lo, b_hi, coeff.get(), lanes);
+        kApRows[parity | (y & 1) << 1 | F.nine_point << 2](in, b_lo, b_hi, out);
       }
     }
     // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
-    // points p around K of P(p, K) * (A P)(p, K + d).
-    constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
-    for (int J = J0; J < J1; ++J)
-      for (int I = 0; I < C.w; ++I) {
-        const size_t kc = C.at(I, J);
-        if (!computed(I, J)) continue;
-        if (!C.alive[kc]) {
-          if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
-          continue;
-        }
+    // points p around K of P(p, K) * (A P)(p, K + d), in double, lanes of one coarse row.
+    std::vector<double> sums(size_t(5) * lanes);
+    for (int J = J0; J < J1; ++J) {
+      if (!row_wanted[J - J0]) continue;
+      const size_t k0 = C.at(0, J);
+      // (A P) of fine point (2I + ox, 2J + oy), entry m: rows[oy + 1][ox + 1][m * lanes + I].
+      const float* rows[3][3];
+      for (int oy = -1; oy <= 1; ++oy) {
+        rows[oy + 1][0] = ap_at(2 * J + oy, 1);  // x = 2(I - 1) + 1: lane I - 1, at index I
+        rows[oy + 1][1] = ap_at(2 * J + oy, 0) + 1;
+        rows[oy + 1][2] = ap_at(2 * J + oy, 1) + 1;
+      }
+      const float *x0 = P.x0.data(), *x1 = P.x1.data(), *y0 = P.y0.data(), *y1 = P.y1.data(),
+                  *c00 = P.c00.data(), *c10 = P.c10.data(), *c01 = P.c01.data(),
+                  *c11 = P.c11.data();
+      double* s = sums.data();
+      for (int I = i_lo; I < i_hi; ++I) {
+        const size_t kc = k0 + I;
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
-        const float weight[3][3] = {{P.c11[kc - cs - 1], P.y1[kc - cs], P.c01[kc - cs]},
-                                    {P.x1[kc - 1], 1.0f, P.x0[kc]},
-                                    {P.c10[kc - 1], P.y0[kc], P.c00[kc]}};
-        // Unrolled, so that the offsets are constants and the sums stay in registers. A term of
-        // a zero weight, or of a fine point outside the level (a row of zeros), adds +-0 to a
-        // sum that starts at +0: it leaves the sum as it is, so no weight is tested.
-        static constexpr float kZeroRow[9] = {};
+        const float weight[3][3] = {{c11[kc - cs - 1], y1[kc - cs], c01[kc - cs]},
+                                    {x1[kc - 1], 1.0f, x0[kc]},
+                                    {c10[kc - 1], y0[kc], c00[kc]}};
         double acc[5] = {0, 0, 0, 0, 0};
+        constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
 #pragma GCC unroll 3
         for (int oy = -1; oy <= 1; ++oy)
 #pragma GCC unroll 3
           for (int ox = -1; ox <= 1; ++ox) {
-            const int x = 2 * I + ox, y = 2 * J + oy;
             const float wk = weight[oy + 1][ox + 1];
-            const float* row = x >= 0 && y >= 0 && x < F.w && y < F.h
-                                   ? &ap[(size_t(y - y_first) * F.w + x) * 9]
-                                   : kZeroRow;
+            const float* row = rows[oy + 1][ox + 1] + I;
             // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
             const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
 #pragma GCC unroll 5
             for (int m = 0; m < 5; ++m) {
               const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
               if (sx < 0 || sx > 2 || sy > 2) continue;
-              acc[m] += double(wk) * row[sy * 3 + sx];
+              acc[m] += double(wk) * row[(sy * 3 + sx) * lanes];
             }
           }
-        store(kc, {float(acc[0]), acc[0] > 0 ? float(1.0 / acc[0]) : 0.0f, float(-acc[1]),
-                   float(-acc[2]), float(-acc[3]), float(-acc[4])});
+        for (int m = 0; m < 5; ++m) s[m * lanes + I] = acc[m];
       }
+      for (int I = i_lo; I < i_hi; ++I) {
+        const size_t kc = k0 + I;
+        if (!computed(I, J)) continue;
+        if (!C.alive[kc]) {
+          if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
+          continue;
+        }
+        const double d = s[I];
+        store(kc, {float(d), d > 0 ? float(1.0 / d) : 0.0f, float(-s[lanes + I]),
+                   float(-s[2 * lanes + I]), float(-s[3 * lanes + I]), float(-s[4 * lanes + I])});
+      }
+    }
   });
   if (!plain.model) return changed;
   const size_t model = *plain.model;
