@@ -169,28 +169,46 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
   out.flags.assign(C.padded(), 0);
   if (!copies || (F.nine_point && F.plain.empty())) return out;
   const int fs = F.stride;
-  const auto plain_stencil = [&](size_t k) -> bool {
+  // 1 where a fine point's stencil is not the plain one, for the points of row y: with & rather
+  // than &&, no branch (ivdep: `bad` is none of the level's arrays).
+  const auto not_plain = [&](int y, std::uint8_t* bad) {
+    // Sizes as locals of the loops: the byte stores may alias anything, so a member or a captured
+    // reference would be read again at every step.
+    const int fw = F.w, stride = fs;
+    const size_t k0 = F.at(0, y);
     if (F.nine_point) {
-      const std::uint8_t* v = F.plain.data();
-      return v[k] && v[k - 1] && v[k - fs] && v[k - fs - 1] && v[k - fs + 1];
+      const std::uint8_t* v = F.plain.data() + k0;
+      const std::uint8_t* n = v - stride;
+      for (int x = 0; x < fw; ++x) bad[x] = !(v[x] & v[x - 1] & n[x] & n[x - 1] & n[x + 1]);
+      return;
     }
-    const std::uint8_t c = F.code[k];
-    const bool four = c & kCodeAnchored ? F.diag[k] == 4.0f : c >> kCodeLinksShift == 4;
-    return F.alive[k] && four && (c & kCodeEast) && (c & kCodeSouth) &&
-           (F.code[k - 1] & kCodeEast) && (F.code[k - fs] & kCodeSouth);
+    const std::uint8_t *code = F.code.data() + k0, *alive = F.alive.data() + k0;
+    const float* diag = F.diag.data() + k0;
+#pragma GCC ivdep
+    for (int x = 0; x < fw; ++x) {
+      const std::uint8_t c = code[x];
+      const bool anchored_four = diag[x] == 4.0f, links_four = c >> kCodeLinksShift == 4;
+      const bool four = c & kCodeAnchored ? anchored_four : links_four;
+      bad[x] = !(alive[x] & four & ((c & kCodeEast) != 0) & ((c & kCodeSouth) != 0) &
+                 ((code[x - 1] & kCodeEast) != 0) & ((code[x - stride] & kCodeSouth) != 0));
+    }
   };
   // Per fine row, per coarse column I: whether fine points 2I-3 .. 2I+3 of the row are all plain
-  // (a prefix count of the row); then per coarse point, whether rows 2J-3 .. 2J+3 all say so.
+  // (the row's flags ORed over windows of 2, 4 and 7); then per coarse point, whether rows
+  // 2J-3 .. 2J+3 all say so.
   std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
   for_rows(F.h, F.w, [&](int y0, int y1) {
-    std::vector<int> count(size_t(F.w) + 1, 0);
+    const int fw = F.w, cw = C.w;
+    // Spare entries past the row, 0 (the windows' flags that reach past it are not read).
+    std::vector<std::uint8_t> bad(size_t(F.w) + 8, 0), two(bad.size(), 0), four(bad.size(), 0);
     for (int y = y0; y < y1; ++y) {
-      const size_t k0 = F.at(0, y);
-      for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + !plain_stencil(k0 + x);
-      std::uint8_t* row = &columns[size_t(y) * C.w];
-      for (int I = 0; I < C.w; ++I) {
-        const int x0 = 2 * I - 3, x1 = 2 * I + 4;
-        row[I] = x0 >= 0 && x1 <= F.w && count[x1] == count[x0];
+      not_plain(y, bad.data());
+      for (int x = 0; x < fw; ++x) two[x] = bad[x] | bad[x + 1];
+      for (int x = 0; x < fw; ++x) four[x] = two[x] | two[x + 2];
+      std::uint8_t* row = &columns[size_t(y) * cw];
+      for (int I = 0; I < cw; ++I) {
+        const int x0 = 2 * I - 3, x1 = 2 * I + 4;  // the window x0 .. x1 - 1
+        row[I] = x0 >= 0 && x1 <= fw && !(four[x0] | four[x0 + 3]);
       }
     }
   });
@@ -199,10 +217,12 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
       const int y0 = 2 * J - 3, y1 = 2 * J + 4;
       if (y0 < 0 || y1 > F.h) continue;
       std::uint8_t* o = &out.flags[C.at(0, J)];
-      for (int I = 0; I < C.w; ++I) o[I] = 1;
+      const int cw = C.w;
+      for (int I = 0; I < cw; ++I) o[I] = 1;
       for (int y = y0; y < y1; ++y) {
-        const std::uint8_t* in = &columns[size_t(y) * C.w];
-        for (int I = 0; I < C.w; ++I) o[I] &= in[I];
+        const std::uint8_t* in = &columns[size_t(y) * cw];
+#pragma GCC ivdep
+        for (int I = 0; I < cw; ++I) o[I] &= in[I];
       }
     }
   });
