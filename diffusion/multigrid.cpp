@@ -2091,11 +2091,26 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   const size_t np = p.pixel_count();
   const auto initial = [&](auto& u) {
     u.resize(np * NC);
+    // Plain pointers and every load made before the selects, so that the loop vectorises; the
+    // guess may be u itself, read at each place before it is written there (ivdep).
+    auto* const start = u.data();
+    const std::uint8_t *given = p.fixed.data(), *fixed = fixed_.data();
+    const float *value = p.value.data(), *kept = guess ? guess->data() : nullptr;
     for_rows(p.height, p.width * NC, [&](int y0, int y1) {
-      for (int c = 0; c < NC; ++c)
-        for (size_t i = p.index(0, y0); i < p.index(0, y1); ++i)
-          u[c * np + i] = p.fixed[i] ? p.value[c * np + i]
-                                     : (guess && !fixed_[i] ? (*guess)[c * np + i] : 0.0f);
+      const size_t i0 = p.index(0, y0), i1 = p.index(0, y1);
+      for (int c = 0; c < NC; ++c) {
+        const size_t o = c * np;
+        if (kept) {
+#pragma GCC ivdep
+          for (size_t i = i0; i < i1; ++i) {
+            const float v = value[o + i], g = kept[o + i];
+            start[o + i] = given[i] ? v : (fixed[i] ? 0.0f : g);
+          }
+        } else {
+#pragma GCC ivdep
+          for (size_t i = i0; i < i1; ++i) start[o + i] = given[i] ? value[o + i] : 0.0f;
+        }
+      }
     });
   };
   // u += the correction solved on the finest level.
