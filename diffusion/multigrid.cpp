@@ -615,8 +615,8 @@ struct ApInputs {
   int lanes;
   const float *x0, *x1, *y0, *y1, *c00, *c10, *c01, *c11;  // Prolongation, by padded coarse index
   const std::uint8_t* alive;                               // the fine level's, by padded index
-  size_t cell_row[3];  // C.at(0, (y + dy) >> 1) for dy = -1, 0, 1
-  size_t fine_row[3];  // F.at(0, y + dy)
+  // The fine row's, set per row: C.at(0, (y + dy) >> 1) and F.at(0, y + dy) for dy = -1, 0, 1.
+  size_t cell_row[3] = {}, fine_row[3] = {};
 };
 
 // The stencils of the fine points x = 2I + PX of row y, lanes I in [i0, i1), as the rows of A
@@ -628,15 +628,8 @@ void ap_coefficients(const Level& F, int y, int i0, int i1, float* coeff, int la
   const int fs = F.stride;
   const size_t row = F.at(PX, y);
   const std::uint8_t* alive = F.alive.data();
-  float* const c[9] = {coeff + 1,
-                       coeff + lanes + 1,
-                       coeff + 2 * lanes + 1,
-                       coeff + 3 * lanes + 1,
-                       coeff + 4 * lanes + 1,
-                       coeff + 5 * lanes + 1,
-                       coeff + 6 * lanes + 1,
-                       coeff + 7 * lanes + 1,
-                       coeff + 8 * lanes + 1};
+  float* c[9];
+  for (int m = 0; m < 9; ++m) c[m] = coeff + m * lanes + 1;
   // Every load is made (the arrays are padded), and only then selected: no branch, so that the
   // loops vectorise; ivdep: `coeff` overlaps none of the level's arrays.
   if (!F.code.empty()) {
@@ -680,7 +673,9 @@ void ap_coefficients(const Level& F, int y, int i0, int i1, float* coeff, int la
 // One term of row p of A P (see ap_rows): the coefficient of p's neighbour q = p + (DX, DY)
 // times q's row of P, whose at most four weights go to the corners of q's cell: which of them
 // can be other than 0 follows from q's parity, and only those are added (a weight that is 0
-// would add +-0, which leaves a sum that starts at +0 as it is).
+// would add +-0, which leaves a sum that starts at +0 as it is). P's weights are 0 where their
+// fine point is not alive or lies outside the level (build_prolongation writes them so, and the
+// ghost cells stay 0), so only a coarse point itself needs its alive flag read.
 template <int PX, int PY, int DX, int DY>
 inline void ap_term(const ApInputs& in, int I, float (&o)[9]) {
   // q's cell column minus I, and the place of q's cell in p's 3x3 block of coarse points.
@@ -799,34 +794,29 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
       return &ap[size_t(y - y_first) * row_floats + size_t(parity) * 9 * lanes];
     };
     const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
+    ApInputs in{coeff.get(),  lanes,        P.x0.data(),  P.x1.data(),  P.y0.data(),   P.y1.data(),
+                P.c00.data(), P.c10.data(), P.c01.data(), P.c11.data(), F.alive.data()};
     for (int y = y_first; y < y_first + y_count; ++y) {
       const int J = y >> 1;  // the wanted rows that read fine row y: J and, for odd y, J + 1
       const bool read = (J >= J0 && row_wanted[J - J0]) ||
                         ((y & 1) && J + 1 < J1 && J + 1 >= J0 && row_wanted[J + 1 - J0]);
       if (!read) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        in.cell_row[dy + 1] = C.at(0, (y + dy) >> 1);
+        in.fine_row[dy + 1] = F.at(0, y + dy);
+      }
       for (int parity = 0; parity < 2; ++parity) {
         float* out = ap_at(y, parity);
         // Columns outside the level, and rows outside it, are rows of zeros.
         const int b_lo = std::max(a_lo, 0);
         const int b_hi = y < 0 || y >= F.h ? b_lo : std::min(a_hi, columns[parity]);
-        for (int I = a_lo; I < b_lo; ++I)
-          for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
-        for (int I = std::max(b_hi, b_lo); I < a_hi; ++I)
-          for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
+        const auto clear = [&](int from, int to) {
+          for (int I = from; I < to; ++I)
+            for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
+        };
+        clear(a_lo, b_lo);
+        clear(std::max(b_hi, b_lo), a_hi);
         if (b_lo >= b_hi) continue;
-        ApInputs in{coeff.get(),
-                    lanes,
-                    P.x0.data(),
-                    P.x1.data(),
-                    P.y0.data(),
-                    P.y1.data(),
-                    P.c00.data(),
-                    P.c10.data(),
-                    P.c01.data(),
-                    P.c11.data(),
-                    F.alive.data(),
-                    {C.at(0, (y - 1) >> 1), C.at(0, y >> 1), C.at(0, (y + 1) >> 1)},
-                    {F.at(0, y - 1), F.at(0, y), F.at(0, y + 1)}};
         (parity ? ap_coefficients<1> : ap_coefficients<0>)(F, y, b_lo, b_hi, coeff.get(), lanes);
         kApRows[parity | (y & 1) << 1 | F.nine_point << 2](in, b_lo, b_hi, out);
       }
