@@ -358,19 +358,21 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
   }
 }
 
+BodySurface BodyModel::placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
+  BodySurface s;
+  s.part = part;
+  s.solid = solid;
+  s.vertices.reserve(m.vertices.size());
+  for (const Vector3d& v : m.vertices) s.vertices.push_back(frame * v);
+  s.normals.reserve(m.normals.size());
+  for (const Vector3d& n : m.normals) s.normals.push_back(frame.linear() * n);
+  s.triangles = m.triangles;
+  return s;
+}
+
 std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3d& eye) const {
   const BodyParams& b = shape_.params();
   std::vector<BodySurface> out;
-  const auto placed = [&](int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
-    BodySurface s;
-    s.part = part;
-    s.solid = solid;
-    s.vertices.reserve(m.vertices.size());
-    for (const Vector3d& v : m.vertices) s.vertices.push_back(frame * v);
-    for (const Vector3d& n : m.normals) s.normals.push_back(frame.linear() * n);
-    s.triangles = m.triangles;
-    return s;
-  };
   if (b.torso) {
     const BodyShape::Placement torso = shape_.placement(pose, BodyShape::kTorso);
     BodyShape::Placement arm[2] = {shape_.placement(pose, BodyShape::kArmPlus),
@@ -403,31 +405,12 @@ std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3
     m.triangles = neck_.triangles;
     out.push_back(placed(kBodyNeck, BodyShape::kNeck, m, at.frame));
   }
-  if (b.head) out.push_back(placed(kBodyHead, -1, head_, head_frame(pose)));
+  if (b.head) out.push_back(head_surface(pose));
   return out;
 }
 
-std::vector<Eigen::Matrix3d> BodyModel::head_triangles(const HeadPose& pose) const {
-  const Eigen::Isometry3d frame = head_frame(pose);
-  std::vector<Eigen::Matrix3d> out;
-  out.reserve(head_.triangles.size());
-  for (const Eigen::Vector3i& t : head_.triangles) {
-    Eigen::Matrix3d m;
-    m << frame * head_.vertices[t[0]], frame * head_.vertices[t[1]], frame * head_.vertices[t[2]];
-    out.push_back(m);
-  }
-  return out;
-}
-
-std::vector<Eigen::Matrix3d> world_triangles(const BodySurface& surface) {
-  std::vector<Eigen::Matrix3d> out;
-  out.reserve(surface.triangles.size());
-  for (const Eigen::Vector3i& t : surface.triangles) {
-    Eigen::Matrix3d m;
-    m << surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]];
-    out.push_back(m);
-  }
-  return out;
+BodySurface BodyModel::head_surface(const HeadPose& pose) const {
+  return placed(kBodyHead, -1, head_, head_frame(pose));
 }
 
 double BodyModel::distance(const HeadPose& pose, const BodySurface& s, const Vector3d& x) const {

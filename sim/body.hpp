@@ -156,9 +156,6 @@ struct ProjectedSurface {
   std::vector<Eigen::Vector3i> triangles;
 };
 
-// The surface's triangles in world space, corners as columns (for sim::SurfaceRays).
-std::vector<Eigen::Matrix3d> world_triangles(const BodySurface& surface);
-
 // Surfaces in drawing order: paint each whole over the ones before.
 struct ProjectedBody {
   std::vector<ProjectedSurface> surfaces;
@@ -182,9 +179,8 @@ class BodyModel {
   ProjectedBody project(const HeadPose& pose, const Camera& camera,
                         const Eigen::Vector3d& light_dir) const;
 
-  // The posed head's triangles in world space (corners as columns, for sim::SurfaceRays), drawn
-  // or not.
-  std::vector<Eigen::Matrix3d> head_triangles(const HeadPose& pose) const;
+  // The posed head, drawn or not: the same surface as surfaces()' head when it is drawn.
+  BodySurface head_surface(const HeadPose& pose) const;
 
   // The facial features' visible runs (none unless the head and its face are drawn).
   std::vector<FaceStroke> face(const HeadPose& pose, const Camera& camera) const;
@@ -202,6 +198,9 @@ class BodyModel {
     std::vector<Eigen::Vector3d> vertices, normals;  // local to the solid's frame
     std::vector<Eigen::Vector3i> triangles;
   };
+  // Mesh m moved to `frame`, as surface `part` of solid `solid`.
+  static BodySurface placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame);
+
   BodyShape shape_;
   HeadShape head_shape_;
   Mesh head_;              // head-local

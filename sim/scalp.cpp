@@ -82,13 +82,15 @@ std::vector<Vector3d> local_roots(const StrandFrame& frame) {
 }
 
 ScalpView::ScalpView(std::shared_ptr<const Scalp> scalp, const HeadPose& pose,
-                     std::vector<Eigen::Matrix3d> head, const Camera& camera, double level)
-    : scalp_(std::move(scalp)), pose_(pose), rays_(std::move(head), camera), level_(level) {}
+                     std::shared_ptr<const SurfaceRays> head, double level)
+    : scalp_(std::move(scalp)), pose_(pose), rays_(std::move(head)), level_(level) {
+  if (!scalp_ || !rays_) throw std::invalid_argument("ScalpView: no scalp or no head");
+}
 
 double ScalpView::field(const Eigen::Vector2d& p) const {
-  const double d = rays_.depth(p);
+  const double d = rays_->depth(p);
   if (!std::isfinite(d)) return -level_;
-  const Vector3d world = rays_.camera().eye + d * rays_.ray(p);
+  const Vector3d world = rays_->camera().eye + d * rays_->ray(p);
   return scalp_->coverage(pose_.to_local(world)) - level_;
 }
 

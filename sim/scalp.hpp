@@ -52,21 +52,22 @@ std::vector<Eigen::Vector3d> local_roots(const StrandFrame& frame);
 
 class ScalpView {
  public:
-  // `head`: the posed head's triangles in world space (BodyModel::world_triangles, head part).
+  // `head`: eye rays against the posed head (BodyModel::head_surface), which the body's
+  // occluders may share.
   ScalpView(std::shared_ptr<const Scalp> scalp, const HeadPose& pose,
-            std::vector<Eigen::Matrix3d> head, const Camera& camera, double level = 0.5);
+            std::shared_ptr<const SurfaceRays> head, double level = 0.5);
 
   // coverage - level at the head point seen through pixel p; -level off the head.
   double field(const Eigen::Vector2d& p) const;
   // Distance from the eye to that head point; +infinity off the head.
-  double depth(const Eigen::Vector2d& p) const { return rays_.depth(p); }
+  double depth(const Eigen::Vector2d& p) const { return rays_->depth(p); }
   // The head's projected bounding box (pixels).
-  const Eigen::AlignedBox2d& box() const { return rays_.box(); }
+  const Eigen::AlignedBox2d& box() const { return rays_->box(); }
 
  private:
   std::shared_ptr<const Scalp> scalp_;
   HeadPose pose_;
-  SurfaceRays rays_;
+  std::shared_ptr<const SurfaceRays> rays_;
   double level_;
 };
 

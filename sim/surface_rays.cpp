@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 #include "sim/ray_triangle.hpp"
@@ -12,50 +13,63 @@ namespace wisp::sim {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-SurfaceRays::SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
-                         bool with_folds)
-    : world_(std::move(triangles)), camera_(camera), with_folds_(with_folds) {
-  box_.setEmpty();
-  pixel_.reserve(world_.size());
-  reach_.reserve(world_.size());
-  constexpr double kMargin = 1e-4;  // pixels
-  for (const Eigen::Matrix3d& t : world_) {
-    std::array<Vector2d, 3> px;
-    Eigen::AlignedBox2d b;
-    bool ahead = true;
-    for (int c = 0; c < 3; ++c) {
-      px[c] = camera_.project(t.col(c));
-      box_.extend(px[c]);
-      b.extend(px[c]);
-      ahead &= (t.col(c) - camera_.eye).dot(camera_.forward) > 1e-3;
-    }
-    pixel_.push_back(px);
-    if (ahead)
-      reach_.push_back({b.min().x() - kMargin, b.min().y() - kMargin, b.max().x() + kMargin,
-                        b.max().y() + kMargin});
-    else
-      reach_.push_back({-INFINITY, -INFINITY, INFINITY, INFINITY});
+SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vector3i> triangles,
+                         const Camera& camera, bool with_folds)
+    : vertex_(std::move(vertices)),
+      triangle_(std::move(triangles)),
+      camera_(camera),
+      with_folds_(with_folds) {
+  const size_t n = vertex_.size(), count = triangle_.size();
+  for (const Eigen::Vector3i& t : triangle_)
+    for (int c = 0; c < 3; ++c)
+      if (t[c] < 0 || size_t(t[c]) >= n)
+        throw std::invalid_argument("SurfaceRays: a triangle's corner is not a vertex");
+  pixel_.resize(n);
+  std::vector<char> ahead(n);
+  for (size_t v = 0; v < n; ++v) {
+    pixel_[v] = camera_.project(vertex_[v]);
+    ahead[v] = (vertex_[v] - camera_.eye).dot(camera_.forward) > 1e-3;
   }
-  cells_ = std::clamp(int(std::sqrt(double(world_.size()))), 1, 64);
+  // Per triangle its pixel box, which also makes the surface's.
+  box_.setEmpty();
+  std::vector<std::array<double, 4>> bounds(count);  // x0, y0, x1, y1
+  for (size_t t = 0; t < count; ++t) {
+    Eigen::AlignedBox2d b;
+    for (int c = 0; c < 3; ++c) b.extend(corner_pixel(int(t), c));
+    box_.extend(b);
+    bounds[t] = {b.min().x(), b.min().y(), b.max().x(), b.max().y()};
+  }
+  constexpr double kMargin = 1e-4;  // pixels
+  reach_.resize(count);
+  for (size_t t = 0; t < count; ++t) {
+    const Eigen::Vector3i& c = triangle_[t];
+    const std::array<double, 4>& b = bounds[t];
+    reach_[t] =
+        ahead[size_t(c[0])] && ahead[size_t(c[1])] && ahead[size_t(c[2])]
+            ? std::array<double, 4>{b[0] - kMargin, b[1] - kMargin, b[2] + kMargin, b[3] + kMargin}
+            : std::array<double, 4>{-INFINITY, -INFINITY, INFINITY, INFINITY};
+  }
+  cells_ = std::clamp(int(std::sqrt(double(count))), 1, 64);
   first_.assign(size_t(cells_) * cells_ + 1, 0);
   if (box_.isEmpty()) return;
-  // Counted, then filled: each triangle in the cells its pixel box meets.
-  const auto bin = [&](const auto& f) {
-    for (int t = 0; t < int(pixel_.size()); ++t) {
-      Eigen::AlignedBox2d b;
-      for (const Vector2d& q : pixel_[t]) b.extend(q);
-      for (int y = cell(b.min().y(), box_.min().y(), box_.max().y());
-           y <= cell(b.max().y(), box_.min().y(), box_.max().y()); ++y)
-        for (int x = cell(b.min().x(), box_.min().x(), box_.max().x());
-             x <= cell(b.max().x(), box_.min().x(), box_.max().x()); ++x)
-          f(size_t(y) * cells_ + x, t);
-    }
-  };
-  bin([&](size_t c, int) { ++first_[c + 1]; });
+  const Vector2d extent = box_.sizes();
+  scale_x_ = extent.x() > 0 ? cells_ / extent.x() : 0;
+  scale_y_ = extent.y() > 0 ? cells_ / extent.y() : 0;
+  // Each triangle in the cells its pixel box meets: the ranges found once, counted, then filled.
+  std::vector<std::array<int, 4>> range(count);
+  for (size_t t = 0; t < count; ++t) {
+    const std::array<double, 4>& b = bounds[t];
+    range[t] = {cell_x(b[0]), cell_y(b[1]), cell_x(b[2]), cell_y(b[3])};
+    for (int y = range[t][1]; y <= range[t][3]; ++y)
+      for (int x = range[t][0]; x <= range[t][2]; ++x) ++first_[size_t(y) * cells_ + x + 1];
+  }
   for (size_t c = 1; c < first_.size(); ++c) first_[c] += first_[c - 1];
   binned_.resize(size_t(first_.back()));
   std::vector<int> fill(first_.begin(), first_.end() - 1);
-  bin([&](size_t c, int t) { binned_[size_t(fill[c]++)] = t; });
+  for (size_t t = 0; t < count; ++t)
+    for (int y = range[t][1]; y <= range[t][3]; ++y)
+      for (int x = range[t][0]; x <= range[t][2]; ++x)
+        binned_[size_t(fill[size_t(y) * cells_ + x]++)] = int(t);
 }
 
 // Fold edges: on the mesh's border, shared by more than two triangles, or with both triangles on
@@ -66,10 +80,11 @@ void SurfaceRays::find_folds() const {
     int use;                    // 3 * triangle + edge
   };
   std::vector<Use> uses;
-  uses.reserve(3 * world_.size());
-  for (int t = 0; t < int(world_.size()); ++t)
+  uses.reserve(3 * triangle_.size());
+  for (int t = 0; t < int(triangle_.size()); ++t)
     for (int e = 0; e < 3; ++e) {
-      const Vector3d a = world_[t].col(e), b = world_[t].col((e + 1) % 3);
+      // By position, not by index: a seam's vertices are repeated.
+      const Vector3d &a = corner(t, e), &b = corner(t, (e + 1) % 3);
       const bool lower =
           std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
       const Vector3d &u = lower ? a : b, &v = lower ? b : a;
@@ -78,11 +93,11 @@ void SurfaceRays::find_folds() const {
   std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
     return x.key != y.key ? x.key < y.key : x.use < y.use;
   });
-  fold_.assign(world_.size(), {true, true, true});
-  neighbour_.assign(world_.size(), {-1, -1, -1});
+  fold_.assign(triangle_.size(), {true, true, true});
+  neighbour_.assign(triangle_.size(), {-1, -1, -1});
   const auto apex_side = [&](int use, int other) {
-    const Vector2d a = pixel_[use / 3][use % 3], b = pixel_[use / 3][(use % 3 + 1) % 3];
-    const Vector2d apex = pixel_[other / 3][(other % 3 + 2) % 3];
+    const Vector2d a = corner_pixel(use / 3, use % 3), b = corner_pixel(use / 3, (use % 3 + 1) % 3);
+    const Vector2d apex = corner_pixel(other / 3, (other % 3 + 2) % 3);
     const Vector2d ab = b - a, ap = apex - a;
     return ab.x() * ap.y() - ab.y() * ap.x();
   };
@@ -100,8 +115,12 @@ void SurfaceRays::find_folds() const {
   }
 }
 
-int SurfaceRays::cell(double v, double lo, double hi) const {
-  return hi > lo ? std::clamp(int((v - lo) / (hi - lo) * cells_), 0, cells_ - 1) : 0;
+int SurfaceRays::cell_x(double x) const {
+  return std::clamp(int((x - box_.min().x()) * scale_x_), 0, cells_ - 1);
+}
+
+int SurfaceRays::cell_y(double y) const {
+  return std::clamp(int((y - box_.min().y()) * scale_y_), 0, cells_ - 1);
 }
 
 Vector3d SurfaceRays::ray(const Vector2d& p) const {
@@ -120,14 +139,12 @@ std::pair<int, double> SurfaceRays::first_hit(const Vector2d& p) const {
   const Vector3d dir = ray(p);
   double best = INFINITY;
   int hit = -1;
-  const size_t c = size_t(cell(p.y(), box_.min().y(), box_.max().y())) * cells_ +
-                   cell(p.x(), box_.min().x(), box_.max().x());
+  const size_t c = size_t(cell_y(p.y())) * cells_ + cell_x(p.x());
   for (int k = first_[c]; k < first_[c + 1]; ++k) {
     const int t = binned_[size_t(k)];
     const std::array<double, 4>& r = reach_[size_t(t)];
     if (p.x() < r[0] || p.y() < r[1] || p.x() > r[2] || p.y() > r[3]) continue;
-    const double d =
-        ray_triangle(camera_.eye, dir, world_[t].col(0), world_[t].col(1), world_[t].col(2));
+    const double d = ray_triangle(camera_.eye, dir, corner(t, 0), corner(t, 1), corner(t, 2));
     if (d > 0 && d < best) best = d, hit = t;
   }
   return {hit, best};
@@ -166,40 +183,38 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
   const int start = first_hit(box.center()).first;
   if (start < 0) return INFINITY;
   const Camera& c = camera_;
-  const Vector2d corner[4] = {box.min(), box.max(), Vector2d(box.min().x(), box.max().y()),
-                              Vector2d(box.max().x(), box.min().y())};
+  const Vector2d box_corner[4] = {box.min(), box.max(), Vector2d(box.min().x(), box.max().y()),
+                                  Vector2d(box.max().x(), box.min().y())};
   Vector3d d[4];
   double longest = 0;
   for (int k = 0; k < 4; ++k) {
-    d[k] = c.forward + c.right * ((corner[k].x() - 0.5 * c.width) / c.focal_px) -
-           c.up * ((corner[k].y() - 0.5 * c.height) / c.focal_px);
+    d[k] = c.forward + c.right * ((box_corner[k].x() - 0.5 * c.width) / c.focal_px) -
+           c.up * ((box_corner[k].y() - 0.5 * c.height) / c.focal_px);
     longest = std::max(longest, d[k].norm());
   }
   const auto meets_box = [&](int t) {
-    const std::array<Vector2d, 3>& q = pixel_[t];
-    Eigen::AlignedBox2d tb(q[0]);
-    tb.extend(q[1]), tb.extend(q[2]);
+    Eigen::AlignedBox2d tb(corner_pixel(t, 0));
+    tb.extend(corner_pixel(t, 1)), tb.extend(corner_pixel(t, 2));
     return tb.intersects(box);
   };
   // No fold of any layer meets the box.
-  const int x0 = cell(box.min().x(), box_.min().x(), box_.max().x());
-  const int x1 = cell(box.max().x(), box_.min().x(), box_.max().x());
-  const int y0 = cell(box.min().y(), box_.min().y(), box_.max().y());
-  const int y1 = cell(box.max().y(), box_.min().y(), box_.max().y());
+  const int x0 = cell_x(box.min().x()), x1 = cell_x(box.max().x());
+  const int y0 = cell_y(box.min().y()), y1 = cell_y(box.max().y());
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x)
       for (int k = first_[size_t(y) * cells_ + x]; k < first_[size_t(y) * cells_ + x + 1]; ++k)
         for (int t = binned_[size_t(k)], e = 0; e < 3; ++e)
-          if (fold_[t][e] && meets(pixel_[t][e], pixel_[t][(e + 1) % 3], box)) return INFINITY;
+          if (fold_[t][e] && meets(corner_pixel(t, e), corner_pixel(t, (e + 1) % 3), box))
+            return INFINITY;
   // The layer hit first through the centre covers the box: its triangles meeting the box, found
   // across shared edges from the centre's, bound the depth (the nearest hit is no farther).
   std::vector<int> layer = {start}, seen = {start};
   double worst = 0;
   for (size_t k = 0; k < layer.size(); ++k) {
     const int t = layer[k];
-    const Eigen::Matrix3d& w = world_[t];
-    Vector3d n = (w.col(1) - w.col(0)).cross(w.col(2) - w.col(0));
-    double reach = n.dot(w.col(0) - c.eye);
+    const Vector3d &a = corner(t, 0), &b = corner(t, 1), &cc = corner(t, 2);
+    Vector3d n = (b - a).cross(cc - a);
+    double reach = n.dot(a - c.eye);
     if (reach < 0) n = -n, reach = -reach;
     double nearest = INFINITY;
     for (const Vector3d& dk : d) nearest = std::min(nearest, n.dot(dk));

@@ -1,8 +1,8 @@
 // Eye rays against a posed triangle surface (a part of the body model, sim/body.hpp): where the
-// ray through a pixel first meets the triangles. The triangles are projected once and binned in a
-// coarse grid over their pixel bounding box, so a query tests only those near its pixel
-// (sim/ray_triangle.hpp on each). Used for the depth of the head and body as occluders of the hair
-// and for the point of the scalp seen through a pixel (sim/scalp.hpp).
+// ray through a pixel first meets the triangles. The vertices are projected once and the
+// triangles binned in a coarse grid over their pixel bounding box, so a query tests only those
+// near its pixel (sim/ray_triangle.hpp on each). Used for the depth of the head and body as
+// occluders of the hair and for the point of the scalp seen through a pixel (sim/scalp.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -18,11 +18,12 @@ namespace wisp::sim {
 
 class SurfaceRays {
  public:
-  // `triangles`: world space, the columns are the corners. `with_folds`: max_depth is wanted,
-  // which needs the edges where the surface's picture folds (it is +infinity without them); they
-  // are found at its first call, so a surface whose bound nobody asks for does not pay for them.
-  SurfaceRays(std::vector<Eigen::Matrix3d> triangles, const Camera& camera,
-              bool with_folds = false);
+  // `vertices`: world space; `triangles`: their indices (each vertex is a corner of about six
+  // triangles: it is projected once). `with_folds`: max_depth is wanted, which needs the edges
+  // where the surface's picture folds (it is +infinity without them); they are found at its
+  // first call, so a surface whose bound nobody asks for does not pay for them.
+  SurfaceRays(std::vector<Eigen::Vector3d> vertices, std::vector<Eigen::Vector3i> triangles,
+              const Camera& camera, bool with_folds = false);
   SurfaceRays(const SurfaceRays&) = delete;
   SurfaceRays& operator=(const SurfaceRays&) = delete;
 
@@ -40,19 +41,28 @@ class SurfaceRays {
   const Camera& camera() const { return camera_; }
   // The triangles' projected bounding box (pixels); empty without triangles.
   const Eigen::AlignedBox2d& box() const { return box_; }
-  // Projected corners of each triangle, in the order given.
-  const std::vector<std::array<Eigen::Vector2d, 3>>& pixels() const { return pixel_; }
+  // The projected vertices, in the order given.
+  const std::vector<Eigen::Vector2d>& pixels() const { return pixel_; }
 
  private:
-  int cell(double v, double lo, double hi) const;
+  int cell_x(double x) const;
+  int cell_y(double y) const;
   std::pair<int, double> first_hit(const Eigen::Vector2d& p) const;  // triangle, distance
   void find_folds() const;
+  const Eigen::Vector3d& corner(int t, int c) const { return vertex_[size_t(triangle_[t][c])]; }
+  const Eigen::Vector2d& corner_pixel(int t, int c) const {
+    return pixel_[size_t(triangle_[t][c])];
+  }
 
-  std::vector<Eigen::Matrix3d> world_;
-  std::vector<std::array<Eigen::Vector2d, 3>> pixel_;
+  std::vector<Eigen::Vector3d> vertex_;
+  std::vector<Eigen::Vector3i> triangle_;
+  std::vector<Eigen::Vector2d> pixel_;  // per vertex
   Camera camera_;
   Eigen::AlignedBox2d box_;
   int cells_ = 1;
+  // Cells per pixel along x and y. A cell is found by a multiplication, which is as monotone in
+  // the coordinate as a division: a point in a triangle's box lies in a cell it was binned in.
+  double scale_x_ = 0, scale_y_ = 0;
   // The triangles meeting each cell of the grid, in order: cell c's are
   // binned_[first_[c]] to binned_[first_[c + 1]] (one array, not a vector per cell).
   std::vector<int> first_, binned_;

@@ -41,25 +41,30 @@ std::vector<Vector2d> convex_hull(std::vector<Vector2d> p) {
 }  // namespace
 
 std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const sim::HeadPose& pose,
-                                             const sim::Camera& camera, double bias) {
+                                             const sim::Camera& camera, double bias,
+                                             std::shared_ptr<const sim::SurfaceRays> head) {
   std::vector<vector::Occluder> out;
-  for (const sim::BodySurface& surface : body.surfaces(pose, camera.eye)) {
+  for (sim::BodySurface& surface : body.surfaces(pose, camera.eye)) {
     bool behind = false;
     for (const Vector3d& v : surface.vertices)
       behind |= (v - camera.eye).dot(camera.forward) <= 1e-3;
     // A surface reaching behind the eye has no meaningful silhouette; it is left out.
     if (behind || surface.triangles.empty()) continue;
-    auto s = std::make_shared<const sim::SurfaceRays>(sim::world_triangles(surface), camera, true);
-    // Each vertex once (a vertex is a corner of about six triangles): the hull's sort is the cost.
+    // The hull's points: each vertex that is a corner, once, in the order of the triangles.
     std::vector<char> taken(surface.vertices.size(), 0);
-    std::vector<Vector2d> points;
-    points.reserve(surface.vertices.size());
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+    std::vector<int> corners;
+    corners.reserve(surface.vertices.size());
+    for (const Eigen::Vector3i& t : surface.triangles)
       for (int c = 0; c < 3; ++c)
-        if (!taken[surface.triangles[t][c]]) {
-          taken[surface.triangles[t][c]] = 1;
-          points.push_back(s->pixels()[t][c]);
-        }
+        if (!taken[t[c]]) taken[t[c]] = 1, corners.push_back(t[c]);
+    std::shared_ptr<const sim::SurfaceRays> s =
+        surface.part == sim::kBodyHead && head
+            ? head
+            : std::make_shared<const sim::SurfaceRays>(std::move(surface.vertices),
+                                                       std::move(surface.triangles), camera, true);
+    std::vector<Vector2d> points;
+    points.reserve(corners.size());
+    for (int v : corners) points.push_back(s->pixels()[size_t(v)]);
     vector::Occluder o;
     o.ring = convex_hull(points);
     if (o.ring.size() < 3) continue;

@@ -7,18 +7,22 @@
 // that bulges past the surface hides nothing).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "sim/body.hpp"
 #include "sim/camera.hpp"
+#include "sim/surface_rays.hpp"
 #include "vector/arrangement.hpp"
 
 namespace wisp::render {
 
 // `bias` (scene units) is added to the occluders' depth: hair lies on the scalp, and a wisp's
 // depth is that of its strand's centre line, so hair within `bias` behind the surface still
-// counts as lying on it (use about a wisp's width).
+// counts as lying on it (use about a wisp's width). `head`: eye rays against the posed head
+// (BodyModel::head_surface) to use for it, or null to build them here.
 std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const sim::HeadPose& pose,
-                                             const sim::Camera& camera, double bias);
+                                             const sim::Camera& camera, double bias,
+                                             std::shared_ptr<const sim::SurfaceRays> head = {});
 
 }  // namespace wisp::render

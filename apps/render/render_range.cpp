@@ -202,13 +202,18 @@ std::vector<nlohmann::json> render_range(const SceneFrames& frames, const FrameS
                 frames.wait_for(k > 0 ? k : std::min(1, frames.frame_count() - 1));
                 f->start = Clock::now();
                 // Three independent parts: on a core that is free (the first frame), in parallel.
+                // The occluders and the hair base share the eye rays against the head.
                 BodyLayer body;
                 std::vector<vector::Occluder> occluders;
                 vector::HairBase base;
                 tbb::this_task_arena::isolate([&] {
                   tbb::parallel_invoke([&] { body = frame_body(frames, k); },
-                                       [&] { occluders = frame_occluders(frames, k); },
-                                       [&] { base = frame_base(frames, k); });
+                                       [&] {
+                                         const auto head = frame_head_rays(frames, k);
+                                         tbb::parallel_invoke(
+                                             [&] { occluders = frame_occluders(frames, k, head); },
+                                             [&] { base = frame_base(frames, k, head); });
+                                       });
                 });
                 const double body_ms = ms_since(f->start);
                 // Isolated: while a frame's parallel loops wait for a stolen part, the thread

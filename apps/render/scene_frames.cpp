@@ -250,11 +250,25 @@ BodyLayer frame_body(const SceneFrames& frames, int k) {
   return layer;
 }
 
-std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k) {
+std::shared_ptr<const sim::SurfaceRays> frame_head_rays(const SceneFrames& frames, int k) {
+  const bool occluder = frames.body && frames.body->params().head;
+  const bool base = frames.scalp && frames.head;
+  if (!occluder && !base) return nullptr;
+  // frames.head is frames.body when there is a body (add_scalp).
+  const sim::BodyModel& model = occluder ? *frames.body : *frames.head;
+  sim::BodySurface head = model.head_surface(frames.anim.frames.at(k).head);
+  // With folds: the occluders' depth bound needs them (found when first asked for).
+  return std::make_shared<const sim::SurfaceRays>(std::move(head.vertices),
+                                                  std::move(head.triangles),
+                                                  sim::Camera::look_at(frames.scene.camera), true);
+}
+
+std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k,
+                                              std::shared_ptr<const sim::SurfaceRays> head) {
   if (!frames.body) return {};
   return body_occluders(*frames.body, frames.anim.frames.at(k).head,
                         sim::Camera::look_at(frames.scene.camera),
-                        frames.scene.style.geometry.width);
+                        frames.scene.style.geometry.width, std::move(head));
 }
 
 namespace {
@@ -290,13 +304,15 @@ std::function<Eigen::Vector3f(const Eigen::Vector2d&)> coat_shade(
 
 }  // namespace
 
-vector::HairBase frame_base(const SceneFrames& frames, int k) {
+vector::HairBase frame_base(const SceneFrames& frames, int k,
+                            std::shared_ptr<const sim::SurfaceRays> head) {
   if (!frames.scalp || !frames.head) return {};
   const io::Scene& scene = frames.scene;
   const sim::HeadPose& pose = frames.anim.frames.at(k).head;
   const sim::Camera camera = sim::Camera::look_at(scene.camera);
-  auto view = std::make_shared<const sim::ScalpView>(
-      frames.scalp, pose, frames.head->head_triangles(pose), camera, scene.style.base.level);
+  if (!head) head = frame_head_rays(frames, k);
+  auto view = std::make_shared<const sim::ScalpView>(frames.scalp, pose, std::move(head),
+                                                     scene.style.base.level);
   // The head's box within the frame; the tracer pads it, so a scalp running past the frame is
   // cut outside it.
   Eigen::AlignedBox2d box = view->box();

@@ -144,13 +144,19 @@ BodyLayer frame_body(const SceneFrames& frames, int k);
 // silhouette, or all in front with an interior opacity; none when the scene grows no fur.
 std::vector<vector::FurTuft> frame_fur(const SceneFrames& frames, int k);
 
+// Eye rays against the head in frame k, for frame_occluders and frame_base to share (each builds
+// its own without them); null when neither needs the head.
+std::shared_ptr<const sim::SurfaceRays> frame_head_rays(const SceneFrames& frames, int k);
+
 // The head and body in frame k as occluders of the hair (apps/body_occluders.hpp); none when
-// the scene draws no body.
-std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k);
+// the scene draws no body. `head`: frame_head_rays(frames, k), or null.
+std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k,
+                                              std::shared_ptr<const sim::SurfaceRays> head = {});
 
 // The hair base in frame k: the visible scalp traced on a grid of about 1/512 of the frame
-// (at least 1 px); empty when the style has none.
-vector::HairBase frame_base(const SceneFrames& frames, int k);
+// (at least 1 px); empty when the style has none. `head`: frame_head_rays(frames, k), or null.
+vector::HairBase frame_base(const SceneFrames& frames, int k,
+                            std::shared_ptr<const sim::SurfaceRays> head = {});
 
 // The frame whose strands give frame k its motion, for the blur (vector::BlurSources): the one
 // before, or the one after for the first; null when there is no other.

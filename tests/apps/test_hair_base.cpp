@@ -95,3 +95,31 @@ TEST_CASE("no skin shows inside the visible scalp and no root shows a cut end, a
   CHECK(before.skin > 40);  // 79 of its 2000 scalp pixels
   CHECK(before.cut_ends > 100);
 }
+
+TEST_CASE("the occluders and the hair base made from one set of head rays are those made apart",
+          "[render][base]") {
+  const render::SceneFrames& sf = frames();
+  const int k = five_angles()[1];
+  const auto head = render::frame_head_rays(sf, k);
+  REQUIRE(head);
+  const std::vector<vector::Occluder> apart = render::frame_occluders(sf, k),
+                                      shared = render::frame_occluders(sf, k, head);
+  const vector::HairBase base_apart = render::frame_base(sf, k),
+                         base_shared = render::frame_base(sf, k, head);
+  REQUIRE(apart.size() == shared.size());
+  REQUIRE(apart.size() >= 2);  // the head and the neck at least
+  CHECK(base_apart.rings == base_shared.rings);
+  for (size_t o = 0; o < apart.size(); ++o) CHECK(apart[o].ring == shared[o].ring);
+  int hits = 0;
+  for (int y = 0; y < kSize; y += 5)
+    for (int x = 0; x < kSize; x += 5) {
+      const Vector2d p(x + 0.5, y + 0.5);
+      for (size_t o = 0; o < apart.size(); ++o) {
+        const double d = apart[o].depth(p);
+        CHECK(d == shared[o].depth(p));
+        hits += std::isfinite(d);
+      }
+      CHECK(base_apart.depth(p) == base_shared.depth(p));
+    }
+  CHECK(hits > 500);
+}

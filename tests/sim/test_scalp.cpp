@@ -26,6 +26,14 @@ BodyModel head_model(const HeadGeometry& head, int slices, int stacks) {
   return BodyModel(head, b);
 }
 
+// Eye rays against the posed head of `model`.
+std::shared_ptr<const SurfaceRays> head_rays(const BodyModel& model, const HeadPose& pose,
+                                             const Camera& camera, bool with_folds = false) {
+  BodySurface s = model.head_surface(pose);
+  return std::make_shared<const SurfaceRays>(std::move(s.vertices), std::move(s.triangles), camera,
+                                             with_folds);
+}
+
 Camera square_camera(int side) {
   CameraParams cp;
   cp.width = cp.height = side;
@@ -85,19 +93,19 @@ TEST_CASE("eye rays against triangles meet the head where the analytic ellipsoid
   HeadGeometry head;
   const BodyModel model = head_model(head, 96, 48);
   const Camera camera = square_camera(200);
-  const SurfaceRays rays(model.head_triangles(HeadPose{}), camera);
+  const auto rays = head_rays(model, HeadPose{}, camera);
   int hits = 0;
   for (int y = 0; y < 200; y += 7)
     for (int x = 0; x < 200; x += 7) {
       const Vector2d p(x + 0.5, y + 0.5);
-      const Vector3d d = rays.ray(p);
+      const Vector3d d = rays->ray(p);
       // The ray through p projects back onto p.
       CHECK((camera.project(camera.eye + d) - p).norm() < 1e-9);
       // Ray and ellipsoid: |(e + t d) / r| = 1.
       const Vector3d e = camera.eye.cwiseQuotient(head.radii), q = d.cwiseQuotient(head.radii);
       const double a = q.squaredNorm(), b = 2 * e.dot(q), c = e.squaredNorm() - 1;
       const double disc = b * b - 4 * a * c;
-      const double depth = rays.depth(p);
+      const double depth = rays->depth(p);
       if (disc < 0) {
         CHECK(std::isinf(depth));
         continue;
@@ -111,6 +119,9 @@ TEST_CASE("eye rays against triangles meet the head where the analytic ellipsoid
       CHECK(depth > t - 0.004);
     }
   CHECK(hits > 30);
+  // A corner that is not a vertex is refused.
+  CHECK_THROWS_AS(SurfaceRays({Vector3d::Zero()}, {Eigen::Vector3i(0, 1, 2)}, camera),
+                  std::invalid_argument);
 }
 
 TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden by the head",
@@ -131,7 +142,7 @@ TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden b
   const Camera camera = Camera::look_at(cp);
   HeadPose pose;
   pose.rotation = Eigen::AngleAxisd(0.3, Vector3d::UnitY());
-  const ScalpView view(scalp, pose, model.head_triangles(pose), camera);
+  const ScalpView view(scalp, pose, head_rays(model, pose, camera));
   // The crown and the face, as the camera sees them.
   const Vector2d crown = camera.project(pose.to_world(shape.surface_point(Vector3d(0, 1, 0.3))));
   const Vector2d face = camera.project(pose.to_world(shape.surface_point(Vector3d(0, -0.2, 1))));
@@ -153,18 +164,18 @@ TEST_CASE("the depth bound over a box holds at every point of it, and is near wh
   HeadGeometry head;
   const BodyModel model = head_model(head, 48, 24);
   const Camera camera = square_camera(200);
-  const SurfaceRays plain(model.head_triangles(HeadPose{}), camera);
-  const SurfaceRays rays(model.head_triangles(HeadPose{}), camera, true);
-  CHECK(std::isinf(plain.max_depth(Eigen::AlignedBox2d(Vector2d(98, 98), Vector2d(102, 102)))));
+  const auto plain = head_rays(model, HeadPose{}, camera);
+  const auto rays = head_rays(model, HeadPose{}, camera, true);
+  CHECK(std::isinf(plain->max_depth(Eigen::AlignedBox2d(Vector2d(98, 98), Vector2d(102, 102)))));
   int known = 0, tight = 0;
   for (int y = 0; y < 200; y += 4)
     for (int x = 0; x < 200; x += 4) {
       const Eigen::AlignedBox2d box(Vector2d(x, y), Vector2d(x + 4, y + 4));
-      const double bound = rays.max_depth(box);
+      const double bound = rays->max_depth(box);
       double deepest = 0;
       for (int k = 0; k <= 8; ++k)
         for (int l = 0; l <= 8; ++l)
-          deepest = std::max(deepest, rays.depth(Vector2d(x + 0.5 * k, y + 0.5 * l)));
+          deepest = std::max(deepest, rays->depth(Vector2d(x + 0.5 * k, y + 0.5 * l)));
       if (std::isinf(bound)) continue;  // no bound: the box may reach past the silhouette
       ++known;
       CHECK(deepest <= bound);
