@@ -327,6 +327,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
       tbb::blocked_range<int>(box.y, box_y1 + 1), [&](const tbb::blocked_range<int>& rows) {
         std::vector<int> local;
         std::vector<LocalSegment> near, blockers;
+        std::vector<const Segment*> own;
         struct CentreDistance {
           size_t centre;
           int curve;
@@ -363,6 +364,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
               if (reach.intersects(Eigen::AlignedBox2d(g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))))
                 blockers.push_back(near.back());
             }
+
+            // The path from a sub-sample to p's own centre lies inside p, at least half a
+            // sub-sample spacing from its edges: only the segments binned in p can block it.
+            own.clear();
+            for (int k = bins.first[b]; k < bins.first[b + 1]; ++k)
+              own.push_back(&segments[bins.index[k]]);
 
             // A centre's distance to a curve, once per pixel: its sub-samples share a few of them.
             centre_distances.clear();
@@ -409,8 +416,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
                 if (cx < 0 || cy < 0 || cx >= width || cy >= height) continue;
                 const Vector2d centre(cx + 0.5, cy + 0.5);
                 const bool blocked =
-                    std::any_of(blockers.begin(), blockers.end(),
-                                [&](const LocalSegment& g) { return meet(q, centre, g.a, g.b); });
+                    dx == 0 && dy == 0
+                        ? std::any_of(own.begin(), own.end(),
+                                      [&](const Segment* g) { return meet(q, centre, g->a, g->b); })
+                        : std::any_of(blockers.begin(), blockers.end(), [&](const LocalSegment& g) {
+                            return meet(q, centre, g.a, g.b);
+                          });
                 const size_t c = size_t(cy) * width + cx;
                 // A centre outside the shown area holds no colour of it (the region's edge is not
                 // always a curve: the head hides hair along its own outline).
