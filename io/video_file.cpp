@@ -3,11 +3,9 @@
 // use.
 #include "io/video_file.hpp"
 
-#include <dlfcn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 
@@ -118,8 +116,11 @@ namespace {
 void probe_video(const std::filesystem::path& path, int width, int height, double fps) {
   const VideoModule& m = video_module(path);
   namespace fs = std::filesystem;
+  // Probes of several threads of one process each have a file of their own.
+  static std::atomic<int> probes{0};
   const fs::path probe =
-      fs::temp_directory_path() / ("wisp-video-probe-" + std::to_string(getpid()) + ".mp4");
+      fs::temp_directory_path() /
+      ("wisp-video-probe-" + std::to_string(getpid()) + "-" + std::to_string(probes++) + ".mp4");
   const std::vector<std::uint8_t> blank(std::size_t(width) * height * 3, 0);
   for (const char* fourcc : {"avc1", "mp4v"}) {
     const bool ok =
@@ -136,83 +137,27 @@ void probe_video(const std::filesystem::path& path, int width, int height, doubl
 
 }  // namespace
 
-VideoCheck::VideoCheck(const std::filesystem::path& path, int width, int height, double fps)
-    : path_(path), width_(width), height_(height) {
+VideoCheck::VideoCheck(const std::filesystem::path& path, int width, int height, double fps) {
   if (!(fps > 0 && fps <= 1000))
     throw std::runtime_error(path.string() + ": fps must be in (0, 1000]");
-  // The probe runs in a child process: once loaded, the video module (FFmpeg, x264) stays
-  // resident, about 60 MB, and a render needs it only for its last step. The child reports an
-  // error as one byte, 'M' (VideoModuleError) or 'E', then the message.
-  int fds[2];
-  const pid_t child = pipe(fds) == 0 ? fork() : -2;
-  if (child < 0) {  // no pipe or no fork: probe here, at the cost of the memory
-    if (child == -1) {
-      close(fds[0]);
-      close(fds[1]);
-    }
+  probe_ = std::thread([this, path, width, height, fps] {
     try {
       probe_video(path, width, height, fps);
     } catch (...) {
       error_ = std::current_exception();
     }
-    return;
-  }
-  if (child == 0) {
-    close(fds[0]);
-    std::string report;
-    try {
-      probe_video(path, width, height, fps);
-    } catch (const VideoModuleError& e) {
-      report = std::string("M") + e.what();
-    } catch (const std::exception& e) {
-      report = std::string("E") + e.what();
-    }
-    for (std::size_t at = 0; at < report.size();) {
-      const ssize_t n = write(fds[1], report.data() + at, report.size() - at);
-      if (n <= 0) break;
-      at += std::size_t(n);
-    }
-    _exit(0);  // no atexit handlers or static destructors of the parent's state
-  }
-  close(fds[1]);
-  child_ = child;
-  report_ = fds[0];
+  });
 }
 
 VideoCheck::~VideoCheck() {
   std::lock_guard<std::mutex> lock(mutex_);
-  collect();
+  if (probe_.joinable()) probe_.join();
 }
 
 void VideoCheck::wait() {
   std::lock_guard<std::mutex> lock(mutex_);
-  collect();
+  if (probe_.joinable()) probe_.join();
   if (error_) std::rethrow_exception(error_);
-}
-
-void VideoCheck::collect() {
-  if (child_ < 0) return;
-  std::string report;
-  char buf[512];
-  for (ssize_t n; (n = read(report_, buf, sizeof buf)) != 0;) {
-    if (n > 0)
-      report.append(buf, std::size_t(n));
-    else if (errno != EINTR)
-      break;
-  }
-  close(report_);
-  int status = 0;
-  while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
-  }
-  child_ = -1;
-  if (!WIFEXITED(status))
-    error_ = std::make_exception_ptr(
-        std::runtime_error(path_.string() + ": the video probe for a " + std::to_string(width_) +
-                           "x" + std::to_string(height_) + " video crashed"));
-  else if (!report.empty() && report[0] == 'M')
-    error_ = std::make_exception_ptr(VideoModuleError(report.substr(1)));
-  else if (!report.empty())
-    error_ = std::make_exception_ptr(std::runtime_error(report.substr(1)));
 }
 
 void check_video(const std::filesystem::path& path, int width, int height, double fps) {

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "io/png_decode.hpp"
@@ -35,16 +36,18 @@ std::string write_video(const std::filesystem::path& path,
                         const std::function<void(int, const RgbImage&)>& each_frame = {});
 
 // Checks, before any frame is written, that a width x height video at `fps` can be written:
-// encodes one blank frame to a temporary file outside the output folder and reads it back, in a
-// child process, so that the caller does not keep the video module loaded (about 60 MB). The
-// child runs beside the caller, which asks for its answer only when it needs it: `wisp render`
-// starts the check before the first frame and awaits it before writing that frame, so the probe
-// (about 190 ms at 1024x1024) is not added to the first frame's latency.
+// encodes one blank frame to a temporary file outside the output folder and reads it back, on a
+// thread of its own beside the caller, which asks for its answer only when it needs it: `wisp
+// render` starts the check before the first frame and awaits it before writing that frame, so
+// the probe is not added to the first frame's latency. The module it loads is the one
+// write_video uses later (loaded once per process). A child process kept the module out of the
+// caller, but copying the caller's pages on write cost the frames more CPU than the probe itself
+// (docs/performance.md, "The video probe on a thread").
 class VideoCheck {
  public:
   // Starts the probe. Throws at once what needs no probe (fps not in (0, 1000]).
   VideoCheck(const std::filesystem::path& path, int width, int height, double fps);
-  // Waits for the child when wait() was not called: no process or probe file is left behind.
+  // Waits for the probe when wait() was not called: no thread or probe file is left behind.
   ~VideoCheck();
   VideoCheck(const VideoCheck&) = delete;
   VideoCheck& operator=(const VideoCheck&) = delete;
@@ -55,14 +58,9 @@ class VideoCheck {
   void wait();
 
  private:
-  void collect();  // reads the child's report and reaps it; mutex_ held
-
-  std::filesystem::path path_;
-  int width_ = 0, height_ = 0;
-  int child_ = -1;   // the probe's process id; -1 once reaped (or when probed here)
-  int report_ = -1;  // the read end of the pipe the child reports on
-  std::mutex mutex_;
-  std::exception_ptr error_;
+  std::mutex mutex_;          // held by wait() and the destructor while they join
+  std::exception_ptr error_;  // written by the probe's thread, read after joining it
+  std::thread probe_;
 };
 
 // The same, waited for: VideoCheck(path, width, height, fps).wait().

@@ -155,7 +155,7 @@ void run_render(const RenderArgs& a) {
   const int cores = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
   const int parallel = frames_in_memory(a, size_field, width, height, cores);
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(parallel));
-  // The video check runs in a child process beside the first frames, and its answer is awaited
+  // The video check runs on a thread beside the first frames, and its answer is awaited
   // before anything is written: the frame folder is made and the first frame written only then,
   // so a size the encoder refuses still writes nothing (docs/performance.md, "First frame").
   std::optional<io::VideoCheck> video;
