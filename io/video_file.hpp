@@ -42,7 +42,7 @@ std::string write_video(const std::filesystem::path& path,
 // the probe is not added to the first frame's latency. The module it loads is the one
 // write_video uses later (loaded once per process). A child process kept the module out of the
 // caller, but copying the caller's pages on write cost the frames more CPU than the probe itself
-// (docs/performance.md, "The video probe on a thread").
+// (docs/performance.md, "The tenth session").
 class VideoCheck {
  public:
   // Starts the probe. Throws at once what needs no probe (fps not in (0, 1000]).
