@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -243,26 +244,36 @@ struct Resolver {
       // Front-most by depth at the sample point; ties go to the lower wisp index. An occluder
       // in front of every wisp makes the face its own: not hair, unless the hair base covers
       // the face and is nearer than that occluder (it lies on the head, behind every wisp).
-      // The candidates are tried nearest bound first (occluders first), so that the wisps
-      // wholly behind the front-most so far need no lookup. Usually two or three are tried:
-      // each is picked from the rest as it is needed rather than all sorted first.
+      // The candidates are tried in the order of their bounds (occluders first), until a bound
+      // is beyond the front-most depth so far: the wisps wholly behind it need no lookup.
+      // Usually two or three are tried, of covers of up to dozens: the first is found by one
+      // pass, and only the candidates whose bound is within its depth are gathered and sorted.
       double best = INFINITY;
-      bool on_base = false;
-      std::vector<std::pair<double, int>>& order = scratch_order;  // (bound, wisp)
-      order.clear();
-      for (const auto& [w, _] : cover(f)) {
-        if (w == base_id())
-          on_base = true;
-        else
-          order.emplace_back(w < n_wisps() ? nearest[w] : -INFINITY, w);
-      }
-      for (auto rest = order.begin(); rest != order.end(); ++rest) {
-        std::iter_swap(rest, std::min_element(rest, order.end()));
-        const auto [bound, w] = *rest;
-        if (bound > best) break;
+      const CoverRange candidates = cover(f);
+      // The hair base's id is the largest: last in the cover, which is sorted by id.
+      const bool on_base = (candidates.last - 1)->first == base_id();
+      const Winding* const end = candidates.last - (on_base ? 1 : 0);
+      const auto bound_of = [&](int w) { return w < n_wisps() ? nearest[w] : -INFINITY; };
+      const auto try_candidate = [&](int w) {
         const double z = w < n_wisps() ? band_depth(wisps[w], cells[w], sample[f]).depth
                                        : options.occluders[w - n_wisps()].depth(sample[f]);
         if (z < best || (z == best && w < front[f])) best = z, front[f] = w;
+      };
+      if (candidates.first != end) {
+        std::pair<double, int> first(INFINITY, std::numeric_limits<int>::max());
+        for (const Winding* c = candidates.first; c != end; ++c)
+          first = std::min(first, std::pair<double, int>(bound_of(c->first), c->first));
+        try_candidate(first.second);
+        std::vector<std::pair<double, int>>& rest = scratch_order;  // (bound, wisp)
+        rest.clear();
+        for (const Winding* c = candidates.first; c != end; ++c)
+          if (const double bound = bound_of(c->first); c->first != first.second && bound <= best)
+            rest.emplace_back(bound, c->first);
+        std::sort(rest.begin(), rest.end());
+        for (const auto& [bound, w] : rest) {
+          if (bound > best) break;
+          try_candidate(w);
+        }
       }
       if (front[f] < 0 || front[f] >= n_wisps()) {
         front[f] = -1;
