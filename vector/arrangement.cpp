@@ -41,8 +41,10 @@ int winding(CoverRange c, int wisp) {
   return it != c.last && it->first == wisp ? it->second : 0;
 }
 
-void add_winding(Cover& c, int wisp, int delta) {
-  const auto it = std::lower_bound(c.begin(), c.end(), std::make_pair(wisp, INT32_MIN));
+// Adds delta to the winding of `wisp` in the cover c[from ..] (the end of c), keeping it sorted and
+// without zeros.
+void add_winding(Cover& c, size_t from, int wisp, int delta) {
+  const auto it = std::lower_bound(c.begin() + from, c.end(), std::make_pair(wisp, INT32_MIN));
   if (it != c.end() && it->first == wisp) {
     it->second += delta;
     if (it->second == 0) c.erase(it);
@@ -138,7 +140,6 @@ struct Resolver {
     });
     cover_pool.clear();
     cover_at.assign(map.faces.size(), {0, 0});
-    Cover c;
     std::vector<char> seen(map.faces.size(), 0);
     std::vector<int>& queue = pool_order;
     queue.assign(1, map.unbounded_face);
@@ -149,17 +150,20 @@ struct Resolver {
         const int h = by_face.items[k], g = map.halfedges[h ^ 1].face;
         if (seen[g]) continue;
         seen[g] = 1;
-        c.assign(cover_pool.begin() + cover_at[f].first, cover_pool.begin() + cover_at[f].second);
+        // g's cover is f's, copied to the pool's end and changed there.
+        const size_t start = cover_pool.size();
+        const auto [from, to] = cover_at[f];
+        cover_pool.resize(start + size_t(to - from));
+        std::copy(cover_pool.begin() + from, cover_pool.begin() + to, cover_pool.begin() + start);
         const int e = h / 2;
         for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
           const PlanarMap::Source& s = map.sources[i];
           const int w = source_wisp[i];  // occluders count like wisps here
           if (w < 0) continue;
           const bool along_h = s.along == (h % 2 == 0);  // face f lies on the segment's left
-          add_winding(c, w, along_h ? -1 : +1);
+          add_winding(cover_pool, start, w, along_h ? -1 : +1);
         }
-        cover_at[g] = {int(cover_pool.size()), int(cover_pool.size() + c.size())};
-        cover_pool.insert(cover_pool.end(), c.begin(), c.end());
+        cover_at[g] = {int(start), int(cover_pool.size())};
         queue.push_back(g);
       }
     }
