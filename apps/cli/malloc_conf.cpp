@@ -6,15 +6,17 @@
 // tens of MB (the arrangement, the image planes, Cairo's surfaces), and on a virtual machine every
 // page that comes back to the process costs a page fault of about 10 us. With pages returned a
 // quarter second after they were freed, `wisp render` of the default scene took 1.4 million faults
-// and 40 % of its CPU in them. Freed pages are now kept for 3 s, long enough to be reused by the
-// next frames, and large extents are backed by transparent huge pages (2 MB: a 512th of the faults
-// and of the TLB misses; the solver's passes over 12 MB planes run at half the user time in
-// `wisp diffuse`). One arena for all threads keeps one pool of freed pages rather than one a
-// thread, which holds the peak at 1024^2 with two threads at 236-246 MB (target 300). A
-// background thread returns the pages once they have not been used for that long.
+// and 40 % of its CPU in them. Freed pages are now kept for 10 s, long enough to be reused by the
+// next frames (at 3 s, 48 frames of the default scene at 512^2 took 16 000 faults against 13 500,
+// and a whole render at 1024^2 6 % more CPU: docs/performance.md, "The tenth session"), and large
+// extents are backed by transparent huge pages (2 MB: a 512th of the faults and of the TLB
+// misses; the solver's passes over 12 MB planes run at half the user time in `wisp diffuse`). One
+// arena for all threads keeps one pool of freed pages rather than one a thread, which holds the
+// peak at 1024^2 with two threads at 242-259 MB (target 300). A background thread returns the pages
+// once they have not been used for that long.
 extern "C" {
 extern const char* malloc_conf;
 const char* malloc_conf =
-    "background_thread:true,narenas:1,dirty_decay_ms:3000,muzzy_decay_ms:0,thp:always,"
+    "background_thread:true,narenas:1,dirty_decay_ms:10000,muzzy_decay_ms:0,thp:always,"
     "metadata_thp:always";
 }
