@@ -15,12 +15,13 @@ Problem make_open_problem(int width, int height, int channels) {
   p.channels = channels;
   const size_t n = p.pixel_count();
   p.fixed.assign(n, 0);
-  p.links.assign(n, 0);
+  // Every link open, but east of the last column and south of the last row.
+  p.links.assign(n, std::uint8_t(kOpenEast | kOpenSouth));
+  if (n > 0) {
+    for (int y = 0; y < height; ++y) p.links[p.index(width - 1, y)] &= std::uint8_t(~kOpenEast);
+    for (int x = 0; x < width; ++x) p.links[p.index(x, height - 1)] &= std::uint8_t(~kOpenSouth);
+  }
   p.anchor_weight.assign(n, 0.0f);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      p.links[p.index(x, y)] =
-          std::uint8_t((x + 1 < width ? kOpenEast : 0) | (y + 1 < height ? kOpenSouth : 0));
   p.value.assign(n * channels, 0.0f);
   return p;
 }
