@@ -834,16 +834,13 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
         rows[oy + 1][1] = ap_at(2 * J + oy, 0) + 1;
         rows[oy + 1][2] = ap_at(2 * J + oy, 1) + 1;
       }
-      const float *x0 = P.x0.data(), *x1 = P.x1.data(), *y0 = P.y0.data(), *y1 = P.y1.data(),
-                  *c00 = P.c00.data(), *c10 = P.c10.data(), *c01 = P.c01.data(),
-                  *c11 = P.c11.data();
       double* s = sums.data();
       for (int I = i_lo; I < i_hi; ++I) {
         const size_t kc = k0 + I;
         // Weight of K in the P row of fine point (2I+ox, 2J+oy).
-        const float weight[3][3] = {{c11[kc - cs - 1], y1[kc - cs], c01[kc - cs]},
-                                    {x1[kc - 1], 1.0f, x0[kc]},
-                                    {c10[kc - 1], y0[kc], c00[kc]}};
+        const float weight[3][3] = {{in.c11[kc - cs - 1], in.y1[kc - cs], in.c01[kc - cs]},
+                                    {in.x1[kc - 1], 1.0f, in.x0[kc]},
+                                    {in.c10[kc - 1], in.y0[kc], in.c00[kc]}};
         double acc[5] = {0, 0, 0, 0, 0};
         constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
 #pragma GCC unroll 3

@@ -30,20 +30,18 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
     pixel_[v] = camera_.project(vertex_[v]);
     ahead[v] = (vertex_[v] - camera_.eye).dot(camera_.forward) > 1e-3;
   }
-  // Per triangle its pixel box, which also makes the surface's.
+  // Per triangle its pixel box, which also makes the surface's, and its reach.
+  constexpr double kMargin = 1e-4;  // pixels
   box_.setEmpty();
   std::vector<std::array<double, 4>> bounds(count);  // x0, y0, x1, y1
-  for (size_t t = 0; t < count; ++t) {
-    Eigen::AlignedBox2d b;
-    for (int c = 0; c < 3; ++c) b.extend(corner_pixel(int(t), c));
-    box_.extend(b);
-    bounds[t] = {b.min().x(), b.min().y(), b.max().x(), b.max().y()};
-  }
-  constexpr double kMargin = 1e-4;  // pixels
   reach_.resize(count);
   for (size_t t = 0; t < count; ++t) {
     const Eigen::Vector3i& c = triangle_[t];
-    const std::array<double, 4>& b = bounds[t];
+    Eigen::AlignedBox2d box;
+    for (int k = 0; k < 3; ++k) box.extend(pixel_[size_t(c[k])]);
+    box_.extend(box);
+    const std::array<double, 4> b = {box.min().x(), box.min().y(), box.max().x(), box.max().y()};
+    bounds[t] = b;
     reach_[t] =
         ahead[size_t(c[0])] && ahead[size_t(c[1])] && ahead[size_t(c[2])]
             ? std::array<double, 4>{b[0] - kMargin, b[1] - kMargin, b[2] + kMargin, b[3] + kMargin}
