@@ -19,6 +19,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -44,6 +46,17 @@ void for_rows(int rows, int row_length, const Body& body) {
   }
   tbb::parallel_for(tbb::blocked_range<int>(0, rows, grain),
                     [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+}
+
+// Asks for the cache line of base[offset] ahead of its use. The passes below read many arrays a
+// row at a time, more streams than the hardware prefetcher follows (and the finest level's
+// diagonal only at anchored points, which it cannot predict): a row's loads waited for memory
+// (`wisp-bench solver`, 1024^2: the solve's cycles 17 % faster with these hints). A prefetch
+// never faults, so the address may lie past the array's end (at the last rows); it is formed
+// as an integer, not as a pointer out of bounds.
+inline void prefetch(const float* base, std::ptrdiff_t offset) {
+  __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(base) +
+                                                   offset * std::ptrdiff_t(sizeof(float))));
 }
 
 // The stopping rule of SolverOptions::max_error. A cycle maps the error e to M e; it changed the
@@ -1002,8 +1015,9 @@ inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __m
                               _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
   // Anchored points are along the curves: most groups of sixteen have none.
   const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
-  if (anchored)
-    k.d = _mm512_mask_loadu_ps(k.d, anchored, &(inverse ? L.inv_diag : L.diag)[row + x]);
+  const float* stored = (inverse ? L.inv_diag : L.diag).data();
+  prefetch(stored, row + x + 64);  // four groups ahead
+  if (anchored) k.d = _mm512_mask_loadu_ps(k.d, anchored, stored + row + x);
   return k;
 }
 
@@ -1092,6 +1106,8 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
       __m512 pe, pw, ps, pn, d;
       __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
       if (finest) {
+        // The rows that the next row's relaxation reads first.
+        for (int c = 0; c < NC; ++c) prefetch(e[c], 2 * s + x), prefetch(b[c], s + x);
         const Coefficients16 k = finest_coefficients(L, row, x, in, true);
         pe = k.e, pw = k.w, ps = k.s, pn = k.n, d = k.d;
       } else {
@@ -1181,6 +1197,9 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
       // lanes are kept).
       const __mmask16 in = lanes(x);
       const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
+      // The rows that the next row's relaxation reads first.
+      for (const float* q : {a.ae, a.as, a.ase, a.asw, id}) prefetch(q, s + x);
+      for (int c = 0; c < NC; ++c) prefetch(e[c], 2 * s + x), prefetch(b[c], s + x);
       const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
       const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       for (int c = 0; c < NC; ++c) {
@@ -1438,6 +1457,8 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
     const auto load = [&](const std::vector<float>& v, size_t k) {
       return _mm512_maskz_loadu_ps(in, &v[k]);
     };
+    for (const std::vector<float>* q : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
+      prefetch(q->data(), kc + cs);  // the next coarse row's
     const __m512 x0 = load(P.x0, kc), x1 = load(P.x1, kc - 1), y0 = load(P.y0, kc),
                  y1 = load(P.y1, kc - cs), c00 = load(P.c00, kc), c10 = load(P.c10, kc - 1),
                  c01 = load(P.c01, kc - cs), c11 = load(P.c11, kc - cs - 1);
@@ -1498,6 +1519,15 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
   const size_t nf = F.padded(), nc = C.padded();
   const int cs = C.stride, pairs = F.w / 2;
   const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
+  // The weights that the fine row two below reads (the next coarse row's).
+  const auto ahead = [&](const std::vector<float>& v) {
+    for (int I = 0; I <= pairs; I += 16) prefetch(v.data(), row + cs + I);
+  };
+  if (y & 1) {
+    for (const std::vector<float>* v : {&P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11}) ahead(*v);
+  } else {
+    ahead(P.x0), ahead(P.x1);
+  }
   for (int c = 0; c < NC; ++c) {
     float* __restrict e = &F.e[c * nf + F.at(0, y)];
     const float* __restrict ec = &C.e[c * nc + row];
