@@ -54,9 +54,10 @@ void for_rows(int rows, int row_length, const Body& body) {
 // (`wisp-bench solver`, 1024^2: the solve's cycles 17 % faster with these hints). A prefetch
 // never faults, so the address may lie past the array's end (at the last rows); it is formed
 // as an integer, not as a pointer out of bounds.
-inline void prefetch(const float* base, std::ptrdiff_t offset) {
+template <class T>
+inline void prefetch(const T* base, std::ptrdiff_t offset) {
   __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(base) +
-                                                   offset * std::ptrdiff_t(sizeof(float))));
+                                                   offset * std::ptrdiff_t(sizeof(T))));
 }
 
 // The stopping rule of SolverOptions::max_error. A cycle maps the error e to M e; it changed the
@@ -1858,6 +1859,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
         const __mmask8 anchored = _mm512_mask_cmp_pd_mask(free, w, _mm512_setzero_pd(), _CMP_GT_OQ);
         for (int c = 0; c < NC; ++c) {
           const T* uc = &u[c * np + i];
+          prefetch(uc, 2 * W), prefetch(p.value.data(), c * np + i + W);  // rows read next
           const __m512d ui = load(uc, free);
           __m512d b = _mm512_setzero_pd(), au = _mm512_setzero_pd();
           if (!p.rhs.empty())
