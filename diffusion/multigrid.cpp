@@ -30,6 +30,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "diffusion/fresh_memory.hpp"
 #include "diffusion/timer.hpp"
 
 namespace wisp::diffusion {
@@ -393,9 +394,9 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   const size_t n = L.padded();
   std::vector<std::uint8_t> changed;
   if (full) {
-    for (auto* v : {&L.diag, &L.inv_diag}) v->assign(n, 0.0f);
-    L.code.assign(n, 0);
-    L.alive.assign(n, 0);
+    for (auto* v : {&L.diag, &L.inv_diag}) assign_touched(*v, n, 0.0f);
+    assign_touched(L.code, n, std::uint8_t(0));
+    assign_touched(L.alive, n, std::uint8_t(0));
   } else {
     changed.assign(n, 0);
   }
@@ -547,7 +548,7 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
   Prolongation& P = prolong_[l];
   if (!rebuild)
     for (auto* v : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
-      v->assign(nc, 0.0f);
+      assign_touched(*v, nc, 0.0f);
   const auto alive_c = [&](int I, int J) { return float(C.alive[C.at(I, J)]); };
   // Edge points first: the cell centres interpolate from them. Every weight of a rebuilt cell is
   // written (0 where its fine point is fixed or outside), so no earlier value stays. Plain cells
@@ -768,7 +769,8 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   if (rebuild)
     changed.assign(nc, 0);
   else
-    for (auto* v : {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw}) v->assign(nc, 0.0f);
+    for (auto* v : {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw})
+      assign_touched(*v, nc, 0.0f);
   const auto wanted = [&](size_t kc) { return !rebuild || (*rebuild)[kc]; };
   // Stores a coarse point's stencil (rebuilt points: noting which changed).
   const auto store = [&](size_t kc, const float(&v)[6]) {
@@ -1800,7 +1802,7 @@ void Multigrid<NC>::setup() {
   // stay 0, so arrays of the same layout are kept as they are.
   for (Level& L : levels_)
     for (auto* v : {&L.e, &L.rhs})
-      if (!reuse || v->size() != L.padded() * NC) v->assign(L.padded() * NC, 0.0f);
+      if (!reuse || v->size() != L.padded() * NC) assign_touched(*v, L.padded() * NC, 0.0f);
   ws_.width = p.width;
   ws_.height = p.height;
 }
@@ -2016,7 +2018,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   // The correction before the first cycle is 0 (F.e above): previous_ is not filled with zeros
   // but marked as such (previous_zero_) until the first measurement has copied the correction.
   if (by_error) {
-    if (previous_.size() != F.e.size()) previous_.assign(F.e.size(), 0.0f);
+    if (previous_.size() != F.e.size()) assign_touched(previous_, F.e.size(), 0.0f);
     previous_zero_ = true;
   }
   if (!done() && options_.full_multigrid) {
@@ -2109,6 +2111,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   const bool refine = !by_error && options_.tolerance < 2e-6;
   const size_t np = p.pixel_count();
   const auto initial = [&](auto& u) {
+    reserve_touched(u, np * NC);
     u.resize(np * NC);
     // Plain pointers and every load made before the selects, so that the loop vectorises; the
     // guess may be u itself, read at each place before it is written there (ivdep).

@@ -1,6 +1,8 @@
 // Problem construction helpers (see problem.hpp).
 #include "diffusion/problem.hpp"
 
+#include "diffusion/fresh_memory.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -14,15 +16,17 @@ Problem make_open_problem(int width, int height, int channels) {
   p.height = height;
   p.channels = channels;
   const size_t n = p.pixel_count();
-  p.fixed.assign(n, 0);
+  // Fresh arrays of a whole image (18 MB at 1024^2, 3 channels): their pages are faulted in by
+  // the worker threads together (fresh_memory.hpp).
+  assign_touched(p.fixed, n, std::uint8_t(0));
   // Every link open, but east of the last column and south of the last row.
-  p.links.assign(n, std::uint8_t(kOpenEast | kOpenSouth));
+  assign_touched(p.links, n, std::uint8_t(kOpenEast | kOpenSouth));
   if (n > 0) {
     for (int y = 0; y < height; ++y) p.links[p.index(width - 1, y)] &= std::uint8_t(~kOpenEast);
     for (int x = 0; x < width; ++x) p.links[p.index(x, height - 1)] &= std::uint8_t(~kOpenSouth);
   }
-  p.anchor_weight.assign(n, 0.0f);
-  p.value.assign(n * channels, 0.0f);
+  assign_touched(p.anchor_weight, n, 0.0f);
+  assign_touched(p.value, n * channels, 0.0f);
   return p;
 }
 
