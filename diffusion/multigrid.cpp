@@ -144,23 +144,28 @@ bool update(float& stored, float value) {
 std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
                                        const std::vector<std::uint8_t>& changed, int radius) {
   // Per fine row: which coarse columns have a flag within the radius (a prefix count of the row).
+  // Rows are independent in both passes: they run in parallel.
   std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
-  std::vector<int> count(size_t(F.w) + 1);
-  for (int y = 0; y < F.h; ++y) {
-    const std::uint8_t* row = &changed[F.at(0, y)];
-    for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + row[x];
-    std::uint8_t* out = &columns[size_t(y) * C.w];
-    for (int I = 0; I < C.w; ++I)
-      out[I] = count[std::min(F.w, 2 * I + radius + 1)] > count[std::max(0, 2 * I - radius)];
-  }
-  std::vector<std::uint8_t> out(C.padded(), 0);
-  for (int J = 0; J < C.h; ++J) {
-    std::uint8_t* o = &out[C.at(0, J)];
-    for (int y = std::max(0, 2 * J - radius); y <= std::min(F.h - 1, 2 * J + radius); ++y) {
-      const std::uint8_t* in = &columns[size_t(y) * C.w];
-      for (int I = 0; I < C.w; ++I) o[I] |= in[I];
+  for_rows(F.h, F.w, [&](int y0, int y1) {
+    std::vector<int> count(size_t(F.w) + 1);
+    for (int y = y0; y < y1; ++y) {
+      const std::uint8_t* row = &changed[F.at(0, y)];
+      for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + row[x];
+      std::uint8_t* out = &columns[size_t(y) * C.w];
+      for (int I = 0; I < C.w; ++I)
+        out[I] = count[std::min(F.w, 2 * I + radius + 1)] > count[std::max(0, 2 * I - radius)];
     }
-  }
+  });
+  std::vector<std::uint8_t> out(C.padded(), 0);
+  for_rows(C.h, C.w * (2 * radius + 1), [&](int J0, int J1) {
+    for (int J = J0; J < J1; ++J) {
+      std::uint8_t* o = &out[C.at(0, J)];
+      for (int y = std::max(0, 2 * J - radius); y <= std::min(F.h - 1, 2 * J + radius); ++y) {
+        const std::uint8_t* in = &columns[size_t(y) * C.w];
+        for (int I = 0; I < C.w; ++I) o[I] |= in[I];
+      }
+    }
+  });
   return out;
 }
 
@@ -345,12 +350,16 @@ template <int NC>
 int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
   const Problem& p = problem_;
   const std::vector<std::uint8_t> reached = reached_from_fixed(p);
-  int floating = 0;
+  std::atomic<int> floating{0};  // a sum of integers: the same in any order
   fixed.resize(p.pixel_count());
-  for (size_t i = 0; i < p.pixel_count(); ++i) {
-    fixed[i] = std::uint8_t((p.fixed[i] != 0) | !reached[i]);  // 0 or 1, whatever p.fixed holds
-    floating += !reached[i];
-  }
+  for_rows(p.height, p.width, [&](int y0, int y1) {
+    int here = 0;
+    for (size_t i = p.index(0, y0); i < p.index(0, y1); ++i) {
+      fixed[i] = std::uint8_t((p.fixed[i] != 0) | !reached[i]);  // 0 or 1, whatever p.fixed holds
+      here += !reached[i];
+    }
+    floating += here;
+  });
   return floating;
 }
 
