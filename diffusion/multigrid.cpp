@@ -144,25 +144,31 @@ bool update(float& stored, float value) {
 std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
                                        const std::vector<std::uint8_t>& changed, int radius) {
   // Per fine row: which coarse columns have a flag within the radius (a prefix count of the row).
-  // Rows are independent in both passes: they run in parallel.
+  // Rows are independent in both passes: they run in parallel. Each pass copies the sizes into
+  // locals of its own: a byte store may alias any int reached through a pointer (a level's, or
+  // a lambda's capture), and the OR of rows below then reloaded its bound at every byte instead
+  // of running 64 bytes at a time.
   std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
   for_rows(F.h, F.w, [&](int y0, int y1) {
-    std::vector<int> count(size_t(F.w) + 1);
+    const int fw = F.w, cw = C.w, r = radius;
+    std::vector<int> count(size_t(fw) + 1);
     for (int y = y0; y < y1; ++y) {
       const std::uint8_t* row = &changed[F.at(0, y)];
-      for (int x = 0; x < F.w; ++x) count[x + 1] = count[x] + row[x];
-      std::uint8_t* out = &columns[size_t(y) * C.w];
-      for (int I = 0; I < C.w; ++I)
-        out[I] = count[std::min(F.w, 2 * I + radius + 1)] > count[std::max(0, 2 * I - radius)];
+      for (int x = 0; x < fw; ++x) count[x + 1] = count[x] + row[x];
+      std::uint8_t* out = &columns[size_t(y) * cw];
+      for (int I = 0; I < cw; ++I)
+        out[I] = count[std::min(fw, 2 * I + r + 1)] > count[std::max(0, 2 * I - r)];
     }
   });
   std::vector<std::uint8_t> out(C.padded(), 0);
   for_rows(C.h, C.w * (2 * radius + 1), [&](int J0, int J1) {
+    const int fh = F.h, cw = C.w, r = radius;
     for (int J = J0; J < J1; ++J) {
       std::uint8_t* o = &out[C.at(0, J)];
-      for (int y = std::max(0, 2 * J - radius); y <= std::min(F.h - 1, 2 * J + radius); ++y) {
-        const std::uint8_t* in = &columns[size_t(y) * C.w];
-        for (int I = 0; I < C.w; ++I) o[I] |= in[I];
+      for (int y = std::max(0, 2 * J - r); y <= std::min(fh - 1, 2 * J + r); ++y) {
+        const std::uint8_t* in = &columns[size_t(y) * cw];
+#pragma GCC ivdep
+        for (int I = 0; I < cw; ++I) o[I] |= in[I];
       }
     }
   });
