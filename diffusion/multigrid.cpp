@@ -359,10 +359,15 @@ int Multigrid<NC>::mark_fixed(std::vector<std::uint8_t>& fixed) const {
   std::atomic<int> floating{0};  // a sum of integers: the same in any order
   fixed.resize(p.pixel_count());
   for_rows(p.height, p.width, [&](int y0, int y1) {
+    // Bounds and arrays as locals: the byte stores may alias anything reached by reference.
+    const size_t i0 = p.index(0, y0), i1 = p.index(0, y1);
+    const std::uint8_t *given = p.fixed.data(), *seen = reached.data();
+    std::uint8_t* out = fixed.data();
     int here = 0;
-    for (size_t i = p.index(0, y0); i < p.index(0, y1); ++i) {
-      fixed[i] = std::uint8_t((p.fixed[i] != 0) | !reached[i]);  // 0 or 1, whatever p.fixed holds
-      here += !reached[i];
+#pragma GCC ivdep
+    for (size_t i = i0; i < i1; ++i) {
+      out[i] = std::uint8_t((given[i] != 0) | !seen[i]);  // 0 or 1, whatever p.fixed holds
+      here += !seen[i];
     }
     floating += here;
   });
