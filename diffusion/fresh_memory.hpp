@@ -1,6 +1,6 @@
 // Fresh memory, faulted in by every worker thread at once. A process's first use of a large array
 // is a page fault per page, in which the kernel zeroes the page (and, on a virtual machine whose
-// host has not backed that memory yet, the host faults it in too): 0.1-2 ms a MB on the machines
+// host has not backed that memory yet, the host faults it in too): 0.06-2.6 ms a MB on the VMs
 // we measure on, paid by the thread that writes the page first. `wisp diffuse` of a 1024^2
 // drawing takes about 100 MB of fresh arrays (the problem, the solver's levels, the answer), and
 // filling each with std::vector::assign put all of those faults on one thread. Here the pages of
