@@ -272,19 +272,23 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
   if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels)
     throw std::invalid_argument("antialias: image planes do not match the size");
   // The general form reads every colour before it writes any (below), so the planes can be both.
-  return antialias(curves, width, height, planes, {0, 0, width, height}, planes, region, options);
+  const PixelWindow image{0, 0, width, height};
+  return antialias(curves, width, height, planes, image, planes, image, region, options);
 }
 
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
                          const std::vector<float>& source, const PixelWindow& source_window,
-                         std::vector<float>& planes, const AntialiasRegion* region,
-                         const AntialiasOptions& options) {
+                         std::vector<float>& planes, const PixelWindow& planes_window,
+                         const AntialiasRegion* region, const AntialiasOptions& options) {
   const size_t n_pixels = size_t(width) * size_t(height);
-  const PixelWindow& sw = source_window;
-  const size_t n_source = sw.pixel_count();
-  if (width <= 0 || height <= 0 || planes.size() < 3 * n_pixels || source.size() < 3 * n_source ||
-      sw.x < 0 || sw.y < 0 || sw.width < 0 || sw.height < 0 || sw.x + sw.width > width ||
-      sw.y + sw.height > height)
+  const PixelWindow &sw = source_window, &pw = planes_window;
+  const size_t n_source = sw.pixel_count(), n_planes = pw.pixel_count();
+  const auto inside_image = [&](const PixelWindow& w) {
+    return w.x >= 0 && w.y >= 0 && w.width >= 0 && w.height >= 0 && w.x + w.width <= width &&
+           w.y + w.height <= height;
+  };
+  if (width <= 0 || height <= 0 || planes.size() < 3 * n_planes || source.size() < 3 * n_source ||
+      !inside_image(sw) || !inside_image(pw))
     throw std::invalid_argument("antialias: image planes do not match the size");
   if (region && region->centres.size() != n_pixels)
     throw std::invalid_argument("antialias: region does not match the image size");
@@ -448,8 +452,12 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
           }
       });
   for (const std::vector<Resampled>& row : new_colours)
-    for (const Resampled& r : row)
-      for (int ch = 0; ch < 3; ++ch) planes[ch * n_pixels + r.pixel] = r.colour[ch];
+    for (const Resampled& r : row) {
+      const int x = int(r.pixel % size_t(width)) - pw.x, y = int(r.pixel / size_t(width)) - pw.y;
+      if (x < 0 || y < 0 || x >= pw.width || y >= pw.height) continue;
+      const size_t i = size_t(y) * pw.width + x;
+      for (int ch = 0; ch < 3; ++ch) planes[ch * n_planes + i] = r.colour[ch];
+    }
   for (long r : resampled) stats.pixels += r;
   return stats;
 }

@@ -50,10 +50,13 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
 // `planes`, which holds the same colours on entry: for a caller that keeps the plain solve (the
 // renderer's warm start) beside the anti-aliased image, without a third copy of the image.
 // `source` holds three planes of the pixels of `source_window` only (a solve of part of the
-// image, rasterize.hpp), and stands for 0 outside it.
+// image, rasterize.hpp), and stands for 0 outside it; `planes` holds three planes of the pixels of
+// `planes_window` (the whole image, or the solve's window: the renderer keeps no more), and
+// re-sampled pixels outside that window are not stored.
 AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, int height,
                          const std::vector<float>& source, const PixelWindow& source_window,
-                         std::vector<float>& planes, const AntialiasRegion* region = nullptr,
+                         std::vector<float>& planes, const PixelWindow& planes_window,
+                         const AntialiasRegion* region = nullptr,
                          const AntialiasOptions& options = {});
 
 }  // namespace wisp::diffusion

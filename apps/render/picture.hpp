@@ -10,12 +10,15 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "diffusion/bezier.hpp"
+#include "diffusion/rasterize.hpp"
 #include "diffusion/render.hpp"
 #include "sim/choices.hpp"
 #include "vector/arrangement.hpp"
@@ -94,8 +97,12 @@ struct FramePicture {
   Rgb background{1, 1, 1};
   std::vector<BodyPath> body;   // back to front
   std::vector<InkStroke> face;  // facial features, drawn on the body (under the hair)
-  diffusion::Image hair;        // full-frame smooth shading (may be empty: no hair)
-  vector::HairMask mask;        // where the hair image shows
+  // The smooth shading at the frame's resolution, kept for the pixels of hair_window only (the
+  // solve's window, which holds every curve and so the mask): hair.width x hair.height is
+  // hair_window's size, and the frame is black outside it. Empty: no hair.
+  diffusion::Image hair;
+  diffusion::PixelWindow hair_window;
+  vector::HairMask mask;  // where the hair image shows
   // Where the hair base shows (inside the mask) and its colour: its own layer in SVGs, under the
   // hair (in PNGs the hair image covers it).
   vector::HairMask base;
@@ -130,6 +137,11 @@ std::vector<std::uint8_t> rasterize_mask(const vector::HairMask& mask, int width
 // where the map blurs instead of cutting the blurred hair. Only the box the blur can reach
 // around the mask is blurred.
 std::vector<float> reblur_hair(const FramePicture& picture);
+
+// The hair image's pixels in the frame's box [x0, x1) x [y0, y1) as 0xffRRGGBB words
+// (io::pack_rgb), rows `stride` words apart; black outside the picture's hair_window.
+void pack_hair(const FramePicture& picture, int x0, int y0, int x1, int y1, std::uint32_t* out,
+               std::size_t stride);
 
 // Written atomically; errors name the file.
 void write_frame_png(const FramePicture& picture, const std::filesystem::path& path);

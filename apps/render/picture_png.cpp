@@ -61,46 +61,41 @@ void mask_path(cairo_t* cr, const vector::HairMask& mask) {
   cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
 }
 
-// The pixel box [x0, x1) x [y0, y1) of `img` that painting it scaled to width x height and
-// clipped by `mask` reads: the mask's bounding box in the image's pixels, grown by the reach of
-// Cairo's filter (a pixel at 1:1, more where the image is reduced).
-std::array<int, 4> hair_box(const vector::HairMask& mask, const diffusion::Image& img, int width,
-                            int height) {
+// The frame's pixel box [x0, x1) x [y0, y1) that painting the hair through `mask` reads: the
+// mask's bounding box grown by the reach of Cairo's filter (a pixel at 1:1), with room to spare.
+std::array<int, 4> hair_box(const vector::HairMask& mask, int width, int height) {
   double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
   for (const vector::MaskPolygon& poly : mask.polygons)
     for (const Eigen::Vector2d& p : poly.outer) {
       x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y());
       x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
     }
-  const double sx = double(img.width) / width, sy = double(img.height) / height;
-  const int grow = 2 + 2 * int(std::ceil(std::max(sx, sy)));
+  constexpr int kGrow = 4;
   const auto clamp = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
-  return {
-      clamp(std::floor(x0 * sx) - grow, img.width), clamp(std::floor(y0 * sy) - grow, img.height),
-      clamp(std::ceil(x1 * sx) + grow, img.width), clamp(std::ceil(y1 * sy) + grow, img.height)};
+  return {clamp(std::floor(x0) - kGrow, width), clamp(std::floor(y0) - kGrow, height),
+          clamp(std::ceil(x1) + kGrow, width), clamp(std::ceil(y1) + kGrow, height)};
 }
 
 // The box [x0, x1) x [y0, y1) of the hair image as an opaque Cairo surface of its size.
-Surface hair_surface(const diffusion::Image& img, const std::array<int, 4>& box) {
+Surface hair_surface(const FramePicture& pic, const std::array<int, 4>& box) {
   const auto [x0, y0, x1, y1] = box;
   Surface s = make_surface(x1 - x0, y1 - y0);
   cairo_surface_flush(s.get());
-  io::pack_rgb_box(img, x0, y0, x1, y1,
-                   reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s.get())),
-                   size_t(cairo_image_surface_get_stride(s.get())) / sizeof(std::uint32_t));
+  pack_hair(pic, x0, y0, x1, y1,
+            reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s.get())),
+            size_t(cairo_image_surface_get_stride(s.get())) / sizeof(std::uint32_t));
   cairo_surface_mark_dirty(s.get());
   return s;
 }
 
-// Paints the hair image, scaled to the picture, through the mask (the current clip is unchanged).
+// Paints the hair image through the mask (the current clip is unchanged).
 void paint_hair(cairo_t* c, const FramePicture& pic) {
-  const std::array<int, 4> box = hair_box(pic.mask, pic.hair, pic.width, pic.height);
+  const std::array<int, 4> box = hair_box(pic.mask, pic.width, pic.height);
   if (box[2] <= box[0] || box[3] <= box[1]) return;
-  const Surface hair = hair_surface(pic.hair, box);
+  const Surface hair = hair_surface(pic, box);
   cairo_save(c);
   mask_path(c, pic.mask);
   cairo_clip(c);
-  cairo_scale(c, double(pic.width) / pic.hair.width, double(pic.height) / pic.hair.height);
   cairo_set_source_surface(c, hair.get(), box[0], box[1]);
   cairo_paint(c);
   cairo_restore(c);
@@ -295,6 +290,31 @@ Surface draw(const FramePicture& pic) {
 }
 
 }  // namespace
+
+void pack_hair(const FramePicture& pic, int x0, int y0, int x1, int y1, std::uint32_t* out,
+               std::size_t stride) {
+  const diffusion::PixelWindow& w = pic.hair_window;
+  const diffusion::Image& img = pic.hair;
+  if (img.width != w.width || img.height != w.height ||
+      img.planes.size() != 3 * size_t(img.width) * img.height)
+    throw std::logic_error("pack_hair: the hair image is not its window's size");
+  const std::uint32_t black = 0xff000000u;  // io::pack_rgb's word for 0, 0, 0
+  // The part of the box inside the window, [wx0, wx1) x [wy0, wy1), in the frame's pixels.
+  const int wx0 = std::clamp(w.x, x0, x1), wx1 = std::clamp(w.x + w.width, wx0, x1);
+  const int wy0 = std::clamp(w.y, y0, y1), wy1 = std::clamp(w.y + w.height, wy0, y1);
+  if (wx0 < wx1 && wy0 < wy1)
+    io::pack_rgb_box(img, wx0 - w.x, wy0 - w.y, wx1 - w.x, wy1 - w.y,
+                     out + size_t(wy0 - y0) * stride + (wx0 - x0), stride);
+  for (int y = y0; y < y1; ++y) {
+    std::uint32_t* row = out + size_t(y - y0) * stride;
+    if (y < wy0 || y >= wy1 || wx0 == wx1) {
+      std::fill(row, row + (x1 - x0), black);
+      continue;
+    }
+    std::fill(row, row + (wx0 - x0), black);
+    std::fill(row + (wx1 - x0), row + (x1 - x0), black);
+  }
+}
 
 std::vector<std::uint8_t> rasterize_frame(const FramePicture& pic) {
   const Surface s = draw(pic);

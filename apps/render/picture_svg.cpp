@@ -169,11 +169,11 @@ std::string base64(const std::vector<unsigned char>& bytes) {
   return out;
 }
 
-// The pixels of `img` in the box [x0, x1) x [y0, y1) as a PNG data URI.
-std::string png_data_uri(const diffusion::Image& img, int x0, int y0, int x1, int y1) {
+// The hair image's pixels in the frame's box [x0, x1) x [y0, y1) as a PNG data URI.
+std::string png_data_uri(const FramePicture& pic, int x0, int y0, int x1, int y1) {
   const int w = x1 - x0, h = y1 - y0;
   std::vector<std::uint32_t> rgb(size_t(w) * h);  // 0xffRRGGBB words, encoded as RGB
-  io::pack_rgb_box(img, x0, y0, x1, y1, rgb.data(), size_t(w));
+  pack_hair(pic, x0, y0, x1, y1, rgb.data(), size_t(w));
   const std::vector<std::uint8_t> png = io::encode_png(
       {reinterpret_cast<const std::uint8_t*>(rgb.data()), w, h, 3, size_t(w) * 4, true});
   return "data:image/png;base64," + base64(png);
@@ -408,17 +408,15 @@ void hair_layer(const Writer& w, LayerText& out) {
   if (w.style == SvgStyle::Embedded) {
     const std::string silhouette = mask_path(w.num, pic.mask);
     if (pic.hair.planes.empty() || silhouette.empty()) return;
-    const auto [x0, y0, x1, y1] = mask_box(pic.mask, pic.hair.width, pic.hair.height);
+    const auto [x0, y0, x1, y1] = mask_box(pic.mask, pic.width, pic.height);
     if (x1 <= x0 || y1 <= y0) return;
     out.defs << "<clipPath id=\"hair-silhouette\" clipPathUnits=\"userSpaceOnUse\"><path "
                 "clip-rule=\"evenodd\" d=\""
              << silhouette << "\"/></clipPath>\n";
-    // The image's pixels scale with the frame when the hair was solved at another size.
-    const double sx = double(pic.width) / pic.hair.width, sy = double(pic.height) / pic.hair.height;
-    out.body << "<image id=\"hair-shading\" x=\"" << w.num(x0 * sx) << "\" y=\"" << w.num(y0 * sy)
-             << "\" width=\"" << w.num((x1 - x0) * sx) << "\" height=\"" << w.num((y1 - y0) * sy)
+    out.body << "<image id=\"hair-shading\" x=\"" << w.num(x0) << "\" y=\"" << w.num(y0)
+             << "\" width=\"" << w.num(x1 - x0) << "\" height=\"" << w.num(y1 - y0)
              << "\" preserveAspectRatio=\"none\" clip-path=\"url(#hair-silhouette)\" "
-             << "xlink:href=\"" << png_data_uri(pic.hair, x0, y0, x1, y1) << "\"/>\n";
+             << "xlink:href=\"" << png_data_uri(pic, x0, y0, x1, y1) << "\"/>\n";
     return;
   }
   Rgb mean = Rgb::Zero();

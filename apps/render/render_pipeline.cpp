@@ -63,17 +63,16 @@ std::vector<FlatRegion> flat_regions(const std::vector<vector::Wisp>& wisps,
 // Mixes the two sides' colours in every hair pixel that a visible curve crosses, by area; pixels
 // outside the hair mask do not count, since the mask clips the hair image with its own coverage.
 diffusion::AntialiasStats antialias_hair(const std::vector<diffusion::DiffusionCurve>& curves,
-                                         const vector::HairMask& mask, const FrameSolution& solved,
-                                         diffusion::Image& hair) {
+                                         const FrameSolution& solved, FramePicture& pic) {
   diffusion::AntialiasRegion region;
-  region.centres.assign(size_t(hair.width) * hair.height, 0);
-  for (const vector::MaskPolygon& m : mask.polygons) {
+  region.centres.assign(size_t(pic.width) * pic.height, 0);
+  for (const vector::MaskPolygon& m : pic.mask.polygons) {
     region.rings.push_back(m.outer);
     region.rings.insert(region.rings.end(), m.holes.begin(), m.holes.end());
   }
-  vector::fill_centres(region.centres, hair.width, hair.height, region.rings, std::uint8_t(1));
-  return diffusion::antialias(curves, hair.width, hair.height, solved.colours, solved.window,
-                              hair.planes, &region);
+  vector::fill_centres(region.centres, pic.width, pic.height, region.rings, std::uint8_t(1));
+  return diffusion::antialias(curves, pic.width, pic.height, solved.colours, solved.window,
+                              pic.hair.planes, pic.hair_window, &region);
 }
 
 // The colour solve's window around the curves (see render_solve).
@@ -200,7 +199,6 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
     r.problem = diffusion::rasterize(r.curves, win);
     r.time.rasterize = ms_since(t0);
     t0 = Clock::now();
-    const diffusion::PixelWindow image{0, 0, W, H};
     const bool warm = warm_start && warm_start->width == W && warm_start->height == H;
     // No pixel near a curve (the hair is out of the picture): nothing to solve.
     diffusion::Solution s;
@@ -213,8 +211,11 @@ void render_solve(FrameResult& r, const sim::ProjectedFrame& frame, const FrameS
     r.solve = s.stats;
     // The constraints are done with (the inspector shows them), before the images below.
     if (!setup.keep_faces) r.problem = {};
-    // The picture's image, which anti-aliasing changes; the plain solve stays the window's.
-    pic.hair = {W, H, window_planes(s.planes, 3, win, image)};
+    // The picture's image, which anti-aliasing changes; the plain solve stays beside it. Both
+    // hold the window alone (the frame is black outside it): planes of the whole image were 12 MB
+    // at 1024^2 to allocate, zero and copy every frame, in pages the allocator had returned.
+    pic.hair = {win.width, win.height, s.planes};
+    pic.hair_window = win;
     r.solution = {W, H, win, std::move(s.planes), {}};
     t0 = Clock::now();
     const std::vector<diffusion::DiffusionCurve> blurred = vector::blur_curves(
@@ -239,7 +240,7 @@ void render_finish(FrameResult& r, const FrameSetup& setup, const FrameSolution&
   if (!r.curves.empty()) {
     if (setup.antialias) {
       const auto t0 = Clock::now();
-      r.antialias = antialias_hair(r.curves, pic.mask, solved, pic.hair);
+      r.antialias = antialias_hair(r.curves, solved, pic);
       r.time.antialias = ms_since(t0);
     }
     if (!pic.blur.empty()) {

@@ -5,7 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
@@ -58,21 +60,31 @@ TEST_CASE("solving the curves' window alone changes no pixel beyond the solver's
     INFO((pair == &cold_window ? "cold" : "warm") << " frame: " << differ << " bytes differ");
     CHECK(largest <= 1);
     CHECK(differ <= int(pa.size() / 1000));
-    // The kept solution is the window's alone, and the hair image is 0 outside it: nothing was
-    // solved there.
+    // The kept solution and the picture's hair image are the window's alone, and the hair is
+    // black outside it: nothing was solved there.
     const diffusion::PixelWindow& v = a.window;
     CHECK(a.solution.window == v);
     CHECK(a.solution.colours.size() == 3 * v.pixel_count());
-    int outside = 0, nonzero = 0;
+    CHECK(a.picture.hair_window == v);
+    CHECK(a.picture.hair.width == v.width);
+    CHECK(a.picture.hair.height == v.height);
+    CHECK(a.picture.hair.planes.size() == 3 * v.pixel_count());
+    std::vector<std::uint32_t> words(size_t(kSize) * kSize);
+    render::pack_hair(a.picture, 0, 0, kSize, kSize, words.data(), kSize);
+    int outside = 0, black = 0, inside_nonblack = 0;
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
-        if (x >= v.x && x < v.x + v.width && y >= v.y && y < v.y + v.height) continue;
+        const std::uint32_t word = words[size_t(y) * kSize + x];
+        if (x >= v.x && x < v.x + v.width && y >= v.y && y < v.y + v.height) {
+          inside_nonblack += word != 0xff000000u;
+          continue;
+        }
         ++outside;
-        for (int c = 0; c < 3; ++c)
-          nonzero += a.picture.hair.planes[size_t(c) * kSize * kSize + y * kSize + x] != 0;
+        black += word == 0xff000000u;
       }
     CHECK(outside > 0);
-    CHECK(nonzero == 0);
+    CHECK(black == outside);
+    CHECK(inside_nonblack > 0);
   }
 }
 

@@ -140,31 +140,41 @@ TEST_CASE("a source of the solve's window alone gives the whole image's pixels",
   const Image sharp = render_drawing(d, 32, 32, {}, nullptr, false);
   std::vector<float> whole = sharp.planes;
   const AntialiasStats st = antialias(d.curves, 32, 32, whole);
-  const auto window_source = [&](const PixelWindow& w) {
+  const auto window_of = [](const std::vector<float>& from, const PixelWindow& w) {
     std::vector<float> planes(3 * w.pixel_count());
     for (int c = 0; c < 3; ++c)
       for (int y = 0; y < w.height; ++y)
         for (int x = 0; x < w.width; ++x)
           planes[c * w.pixel_count() + size_t(y) * w.width + x] =
-              sharp.planes[c * 32 * 32 + size_t(w.y + y) * 32 + w.x + x];
+              from[c * 32 * 32 + size_t(w.y + y) * 32 + w.x + x];
     return planes;
   };
+  const auto window_source = [&](const PixelWindow& w) { return window_of(sharp.planes, w); };
   // The edge's pixels and their neighbours lie in columns 10-19: a window of them is enough.
-  const PixelWindow around{8, 0, 14, 32};
+  const PixelWindow around{8, 0, 14, 32}, image{0, 0, 32, 32};
   std::vector<float> windowed = sharp.planes;
-  CHECK(antialias(d.curves, 32, 32, window_source(around), around, windowed).pixels == st.pixels);
+  CHECK(antialias(d.curves, 32, 32, window_source(around), around, windowed, image).pixels ==
+        st.pixels);
   CHECK(windowed == whole);
+  // Written into planes of the window alone (as the renderer keeps its picture): the same pixels.
+  std::vector<float> window_only = window_source(around);
+  antialias(d.curves, 32, 32, window_source(around), around, window_only, around);
+  CHECK(window_only == window_of(whole, around));
+  CHECK(window_only != window_source(around));
   // A window that leaves out the white side's centres reads 0 there: the edge's pixels change.
   const PixelWindow right_of_edge{16, 0, 16, 32};
   std::vector<float> cut = sharp.planes;
-  antialias(d.curves, 32, 32, window_source(right_of_edge), right_of_edge, cut);
+  antialias(d.curves, 32, 32, window_source(right_of_edge), right_of_edge, cut, image);
   float largest = 0;
   for (size_t i = 0; i < cut.size(); ++i) largest = std::max(largest, std::abs(cut[i] - whole[i]));
   CHECK(largest > 0.3f);
   // A window reaching outside the image is refused.
-  CHECK_THROWS_AS(
-      antialias(d.curves, 32, 32, window_source(around), PixelWindow{20, 0, 14, 32}, windowed),
-      std::invalid_argument);
+  CHECK_THROWS_AS(antialias(d.curves, 32, 32, window_source(around), PixelWindow{20, 0, 14, 32},
+                            windowed, image),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(antialias(d.curves, 32, 32, window_source(around), around, window_only,
+                            PixelWindow{20, 0, 14, 32}),
+                  std::invalid_argument);
 }
 
 TEST_CASE("antialias refuses mismatched sizes", "[antialias]") {
