@@ -3,7 +3,9 @@
 
 #include <isa-l/igzip_lib.h>
 #include <zlib.h>
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
@@ -98,6 +100,28 @@ std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
 
 void pack_rgb(const float* r, const float* g, const float* b, std::uint32_t* out, int n) {
   int x = 0;
+#if defined(__AVX512F__)
+  // Sixteen at a time, the same operations as the SSE2 loop below (and so unit_byte's bytes).
+  {
+    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f),
+                 scale = _mm512_set1_ps(255.0f), half = _mm512_set1_ps(0.5f);
+    const auto bytes = [&](const float* v) {
+      const __m512 c =
+          _mm512_mul_ps(_mm512_min_ps(_mm512_max_ps(_mm512_loadu_ps(v), zero), one), scale);
+      const __m512i i = _mm512_cvttps_epi32(c);
+      const __mmask16 up =
+          _mm512_cmp_ps_mask(_mm512_sub_ps(c, _mm512_cvtepi32_ps(i)), half, _CMP_GE_OQ);
+      return _mm512_mask_add_epi32(i, up, i, _mm512_set1_epi32(1));
+    };
+    const __m512i alpha = _mm512_set1_epi32(int(0xff000000u));
+    for (; x + 16 <= n; x += 16) {
+      const __m512i px =
+          _mm512_or_si512(_mm512_or_si512(alpha, _mm512_slli_epi32(bytes(r + x), 16)),
+                          _mm512_or_si512(_mm512_slli_epi32(bytes(g + x), 8), bytes(b + x)));
+      _mm512_storeu_si512(out + x, px);
+    }
+  }
+#endif
 #if defined(__SSE2__)
   // unit_byte four at a time, the same operations: max(v, 0) takes 0 for NaN like unit_byte, and
   // the truncation and the comparison with a half are exact as there.

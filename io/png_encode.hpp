@@ -35,7 +35,7 @@ inline std::uint8_t unit_byte(float v) {
 
 // n opaque pixels 0xffRRGGBB (Cairo's RGB24 and ARGB32 words; PixelRows::xrgb32) from three
 // planes of channels in [0,1], each byte unit_byte of its channel (vectorised where the CPU has
-// SSE2).
+// SSE2 or AVX-512).
 void pack_rgb(const float* r, const float* g, const float* b, std::uint32_t* out, int n);
 
 // The PNG file's bytes. Throws std::runtime_error for a bad layout or when compression fails.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 
@@ -27,6 +28,28 @@ Surface make_surface(int width, int height, cairo_format_t format = CAIRO_FORMAT
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
                              std::to_string(height) + " image");
+  return s;
+}
+
+// An opaque RGB24 surface whose pixels are not initialised, for a caller that writes every one
+// before anything reads it (Cairo's own surfaces are zeroed: 4 MB a frame at 1024^2).
+Surface unset_surface(int width, int height) {
+  const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, width);
+  static cairo_user_data_key_t pixels_key;
+  unsigned char* pixels =
+      stride > 0 ? static_cast<unsigned char*>(std::malloc(size_t(stride) * height)) : nullptr;
+  if (!pixels)
+    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
+                             std::to_string(height) + " image");
+  Surface s(cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_RGB24, width, height, stride),
+            cairo_surface_destroy);
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS ||
+      cairo_surface_set_user_data(s.get(), &pixels_key, pixels, std::free) !=
+          CAIRO_STATUS_SUCCESS) {
+    std::free(pixels);
+    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
+                             std::to_string(height) + " image");
+  }
   return s;
 }
 
@@ -79,7 +102,7 @@ std::array<int, 4> hair_box(const vector::HairMask& mask, int width, int height)
 // The box [x0, x1) x [y0, y1) of the hair image as an opaque Cairo surface of its size.
 Surface hair_surface(const FramePicture& pic, const std::array<int, 4>& box) {
   const auto [x0, y0, x1, y1] = box;
-  Surface s = make_surface(x1 - x0, y1 - y0);
+  Surface s = unset_surface(x1 - x0, y1 - y0);  // pack_hair writes every pixel
   cairo_surface_flush(s.get());
   pack_hair(pic, x0, y0, x1, y1,
             reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s.get())),
@@ -253,11 +276,13 @@ void paint_layer(cairo_t* c, cairo_surface_t* layer) {
 }
 
 Surface draw(const FramePicture& pic) {
-  Surface surface = make_surface(pic.width, pic.height);
+  Surface surface = unset_surface(pic.width, pic.height);
   Context cr(cairo_create(surface.get()), cairo_destroy);
   cairo_t* c = cr.get();
   set_rgb(c, pic.background);
+  cairo_set_operator(c, CAIRO_OPERATOR_SOURCE);  // every pixel the background, whatever was there
   cairo_paint(c);
+  cairo_set_operator(c, CAIRO_OPERATOR_OVER);
   // Body: one fill per tone region, all its loops in one path (no interior edge is drawn).
   cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
   for (const BodyPath& region : pic.body) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -154,17 +155,24 @@ std::string mask_path(const Num& num, const vector::HairMask& mask) {
   return d.str();
 }
 
-std::string base64(const std::vector<unsigned char>& bytes) {
+// `prefix` followed by the bytes in base64, written into a string of its final size (an image's
+// data URI is a few hundred KB a frame).
+std::string base64(const std::string& prefix, const std::vector<unsigned char>& bytes) {
   static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += kTable[(v >> 18) & 63];
-    out += kTable[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kTable[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kTable[v & 63] : '=';
+  const size_t n = bytes.size(), whole = n / 3 * 3;
+  std::string out(prefix.size() + (n + 2) / 3 * 4, '=');
+  char* o = std::copy(prefix.begin(), prefix.end(), out.data());
+  const unsigned char* in = bytes.data();
+  for (size_t i = 0; i < whole; i += 3, o += 4) {
+    const unsigned v = unsigned(in[i]) << 16 | unsigned(in[i + 1]) << 8 | in[i + 2];
+    o[0] = kTable[v >> 18], o[1] = kTable[(v >> 12) & 63];
+    o[2] = kTable[(v >> 6) & 63], o[3] = kTable[v & 63];
+  }
+  if (whole < n) {  // one or two bytes left: the rest of the four characters stay '='
+    const unsigned v =
+        unsigned(in[whole]) << 16 | (whole + 1 < n ? unsigned(in[whole + 1]) << 8 : 0);
+    o[0] = kTable[v >> 18], o[1] = kTable[(v >> 12) & 63];
+    if (whole + 1 < n) o[2] = kTable[(v >> 6) & 63];
   }
   return out;
 }
@@ -172,11 +180,12 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 // The hair image's pixels in the frame's box [x0, x1) x [y0, y1) as a PNG data URI.
 std::string png_data_uri(const FramePicture& pic, int x0, int y0, int x1, int y1) {
   const int w = x1 - x0, h = y1 - y0;
-  std::vector<std::uint32_t> rgb(size_t(w) * h);  // 0xffRRGGBB words, encoded as RGB
-  pack_hair(pic, x0, y0, x1, y1, rgb.data(), size_t(w));
+  // 0xffRRGGBB words, encoded as RGB; every one is written, so none is zeroed first.
+  const std::unique_ptr<std::uint32_t[]> rgb(new std::uint32_t[size_t(w) * h]);
+  pack_hair(pic, x0, y0, x1, y1, rgb.get(), size_t(w));
   const std::vector<std::uint8_t> png = io::encode_png(
-      {reinterpret_cast<const std::uint8_t*>(rgb.data()), w, h, 3, size_t(w) * 4, true});
-  return "data:image/png;base64," + base64(png);
+      {reinterpret_cast<const std::uint8_t*>(rgb.get()), w, h, 3, size_t(w) * 4, true});
+  return base64("data:image/png;base64,", png);
 }
 
 // The reblurred hair (premultiplied planes, FramePicture::blurred_hair) as an RGBA PNG: its alpha
@@ -192,7 +201,7 @@ std::string rgba_data_uri(const std::vector<float>& planes, int width, int heigh
   }
   const std::vector<std::uint8_t> png =
       io::encode_png({rgba.data(), width, height, 4, 4 * n / height});
-  return "data:image/png;base64," + base64(png);
+  return base64("data:image/png;base64,", png);
 }
 
 // Vector layers under a blur map. SVG has no spatially varying blur, so each path (a flat wisp
