@@ -21,13 +21,16 @@ namespace {
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
+[[noreturn]] void cannot_allocate(int width, int height) {
+  throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
+                           std::to_string(height) + " image");
+}
+
 // Frames are opaque: RGB24 (Cairo writes such surfaces as RGB PNGs, without alpha); layers to
 // reblur are ARGB32.
 Surface make_surface(int width, int height, cairo_format_t format = CAIRO_FORMAT_RGB24) {
   Surface s(cairo_image_surface_create(format, width, height), cairo_surface_destroy);
-  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
-                             std::to_string(height) + " image");
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) cannot_allocate(width, height);
   return s;
 }
 
@@ -36,19 +39,19 @@ Surface make_surface(int width, int height, cairo_format_t format = CAIRO_FORMAT
 Surface unset_surface(int width, int height) {
   const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, width);
   static cairo_user_data_key_t pixels_key;
-  unsigned char* pixels =
-      stride > 0 ? static_cast<unsigned char*>(std::malloc(size_t(stride) * height)) : nullptr;
-  if (!pixels)
-    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
-                             std::to_string(height) + " image");
-  Surface s(cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_RGB24, width, height, stride),
+  void* pixels = stride > 0 && height >= 0
+                     ? std::malloc(std::max<size_t>(1, size_t(stride) * size_t(height)))
+                     : nullptr;
+  if (!pixels) cannot_allocate(width, height);
+  Surface s(cairo_image_surface_create_for_data(static_cast<unsigned char*>(pixels),
+                                                CAIRO_FORMAT_RGB24, width, height, stride),
             cairo_surface_destroy);
+  // The surface frees its pixels when Cairo destroys it.
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS ||
       cairo_surface_set_user_data(s.get(), &pixels_key, pixels, std::free) !=
           CAIRO_STATUS_SUCCESS) {
     std::free(pixels);
-    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
-                             std::to_string(height) + " image");
+    cannot_allocate(width, height);
   }
   return s;
 }
