@@ -14,9 +14,26 @@
 // arena for all threads keeps one pool of freed pages rather than one a thread, which holds the
 // peak at 1024^2 with two threads at 242-259 MB (target 300). A background thread returns the pages
 // once they have not been used for that long.
+#include "apps/cli/malloc_conf.hpp"
+
+#include <cstddef>
+
 extern "C" {
 extern const char* malloc_conf;
 const char* malloc_conf =
     "background_thread:true,narenas:1,dirty_decay_ms:10000,muzzy_decay_ms:0,thp:always,"
     "metadata_thp:always";
 }
+
+// jemalloc's control interface, weak: the sanitizer and fuzzing builds link no jemalloc, and
+// there it is null.
+extern "C" int mallctl(const char* name, void* old, std::size_t* old_size, void* value,
+                       std::size_t value_size) __attribute__((weak));
+
+namespace wisp::cli {
+
+void return_free_pages() {
+  if (mallctl) mallctl("arena.4096.purge", nullptr, nullptr, nullptr, 0);  // MALLCTL_ARENAS_ALL
+}
+
+}  // namespace wisp::cli

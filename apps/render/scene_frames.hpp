@@ -112,6 +112,16 @@ struct SceneFrames {
   void wait_for(int k) const {
     if (feed) feed->wait_for(k);
   }
+  // Lets go of the frames (the feed first, which stops its thread, then the animation, its
+  // projections and the models), keeping `scene`: a render's previews come after its frames, and
+  // the video encoder's buffers would otherwise come on top of them.
+  void release_frames() {
+    feed.reset();
+    anim = {};
+    projected = {};
+    body.reset(), scalp.reset(), head.reset(), fur.reset();
+    fur_motion = {};
+  }
 };
 
 // Loads, simulates or reads, and projects. Errors are exceptions naming the file and field.

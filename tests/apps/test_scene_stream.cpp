@@ -63,3 +63,18 @@ TEST_CASE("a stream asked for the first frames makes those and frame 1, not the 
   CHECK_THROWS_WITH(streamed->wait_for(2), Catch::Contains("never made"));
   CHECK(streamed->projected[2].strands.empty());
 }
+
+TEST_CASE("a stream's frames are let go, its feed stopped first, the scene kept", "[render]") {
+  const auto streamed = render::stream_scene_frames(wisp::io::load_scene(scene), small_frames());
+  REQUIRE(streamed->frame_count() > 2);
+  streamed->wait_for(0);  // the feed may still be making the later frames
+  const int width = streamed->scene.camera.width;
+  streamed->release_frames();  // stops the feed before the frames it fills go
+  CHECK(!streamed->feed);
+  CHECK(streamed->frame_count() == 0);
+  CHECK(streamed->anim.frames.empty());
+  CHECK(!streamed->body);
+  CHECK(!streamed->scalp);
+  CHECK(streamed->scene.camera.width == width);
+  streamed->wait_for(5);  // no feed: returns at once
+}
