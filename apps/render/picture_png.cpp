@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 
@@ -21,38 +20,13 @@ namespace {
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
-[[noreturn]] void cannot_allocate(int width, int height) {
-  throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
-                           std::to_string(height) + " image");
-}
-
 // Frames are opaque: RGB24 (Cairo writes such surfaces as RGB PNGs, without alpha); layers to
 // reblur are ARGB32.
 Surface make_surface(int width, int height, cairo_format_t format = CAIRO_FORMAT_RGB24) {
   Surface s(cairo_image_surface_create(format, width, height), cairo_surface_destroy);
-  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) cannot_allocate(width, height);
-  return s;
-}
-
-// An opaque RGB24 surface whose pixels are not initialised, for a caller that writes every one
-// before anything reads it (Cairo's own surfaces are zeroed: 4 MB a frame at 1024^2).
-Surface unset_surface(int width, int height) {
-  const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, width);
-  static cairo_user_data_key_t pixels_key;
-  void* pixels = stride > 0 && height >= 0
-                     ? std::malloc(std::max<size_t>(1, size_t(stride) * size_t(height)))
-                     : nullptr;
-  if (!pixels) cannot_allocate(width, height);
-  Surface s(cairo_image_surface_create_for_data(static_cast<unsigned char*>(pixels),
-                                                CAIRO_FORMAT_RGB24, width, height, stride),
-            cairo_surface_destroy);
-  // The surface frees its pixels when Cairo destroys it.
-  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS ||
-      cairo_surface_set_user_data(s.get(), &pixels_key, pixels, std::free) !=
-          CAIRO_STATUS_SUCCESS) {
-    std::free(pixels);
-    cannot_allocate(width, height);
-  }
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error("cannot allocate a " + std::to_string(width) + "x" +
+                             std::to_string(height) + " image");
   return s;
 }
 
@@ -105,7 +79,7 @@ std::array<int, 4> hair_box(const vector::HairMask& mask, int width, int height)
 // The box [x0, x1) x [y0, y1) of the hair image as an opaque Cairo surface of its size.
 Surface hair_surface(const FramePicture& pic, const std::array<int, 4>& box) {
   const auto [x0, y0, x1, y1] = box;
-  Surface s = unset_surface(x1 - x0, y1 - y0);  // pack_hair writes every pixel
+  Surface s = make_surface(x1 - x0, y1 - y0);
   cairo_surface_flush(s.get());
   pack_hair(pic, x0, y0, x1, y1,
             reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s.get())),
@@ -279,13 +253,11 @@ void paint_layer(cairo_t* c, cairo_surface_t* layer) {
 }
 
 Surface draw(const FramePicture& pic) {
-  Surface surface = unset_surface(pic.width, pic.height);
+  Surface surface = make_surface(pic.width, pic.height);
   Context cr(cairo_create(surface.get()), cairo_destroy);
   cairo_t* c = cr.get();
   set_rgb(c, pic.background);
-  cairo_set_operator(c, CAIRO_OPERATOR_SOURCE);  // every pixel the background, whatever was there
   cairo_paint(c);
-  cairo_set_operator(c, CAIRO_OPERATOR_OVER);
   // Body: one fill per tone region, all its loops in one path (no interior edge is drawn).
   cairo_set_fill_rule(c, CAIRO_FILL_RULE_WINDING);
   for (const BodyPath& region : pic.body) {
