@@ -321,7 +321,7 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
 
   // Each row's new colours, written once every row has been read: `source` may be `planes`.
   struct Resampled {
-    size_t pixel;
+    int x;  // of the pixel; its row is the list's
     Color colour;
   };
   std::vector<std::vector<Resampled>> new_colours(static_cast<size_t>(height));
@@ -448,14 +448,13 @@ AntialiasStats antialias(const std::vector<DiffusionCurve>& curves, int width, i
             if (count == 0) continue;
             Color mean;
             for (int ch = 0; ch < 3; ++ch) mean[ch] = sum[ch] / count;
-            new_colours[size_t(y)].push_back({p, mean});
+            new_colours[size_t(y)].push_back({x, mean});
           }
       });
-  for (const std::vector<Resampled>& row : new_colours)
-    for (const Resampled& r : row) {
-      const int x = int(r.pixel % size_t(width)) - pw.x, y = int(r.pixel / size_t(width)) - pw.y;
-      if (x < 0 || y < 0 || x >= pw.width || y >= pw.height) continue;
-      const size_t i = size_t(y) * pw.width + x;
+  for (int y = pw.y; y < pw.y + pw.height; ++y)
+    for (const Resampled& r : new_colours[size_t(y)]) {
+      if (r.x < pw.x || r.x >= pw.x + pw.width) continue;
+      const size_t i = size_t(y - pw.y) * pw.width + (r.x - pw.x);
       for (int ch = 0; ch < 3; ++ch) planes[ch * n_planes + i] = r.colour[ch];
     }
   for (long r : resampled) stats.pixels += r;

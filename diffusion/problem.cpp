@@ -1,12 +1,12 @@
 // Problem construction helpers (see problem.hpp).
 #include "diffusion/problem.hpp"
 
-#include "diffusion/fresh_memory.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "diffusion/fresh_memory.hpp"
 
 namespace wisp::diffusion {
 
