@@ -5,6 +5,8 @@
 // arrangement of 1000 plain wisps and the start-up of `wisp diffuse --help`. The rows come from
 // the other benchmarks (run as child processes of this executable, so each starts cold) and from
 // timing the wisp executable itself; the machine should be quiet, since every row is a wall time.
+// Before and after the rows it reads the host's speed by workloads that no commit changes (core,
+// memory, fresh pages: "host" in the JSON), so tables of different days can be told apart.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -105,12 +107,54 @@ const json* find_size(const json& doc, int size) {
   return nullptr;
 }
 
+// How fast this host runs today, by three fixed workloads that no commit changes: the rows' times
+// are wall times on shared virtual machines whose speed moves by 1.6x from one day to the next
+// (docs/performance.md), and these say which kind of day a table was measured on.
+struct HostSpeed {
+  double chain_ns = 0;         // one dependent double multiply-add (core clock and steal)
+  double triad_gb_s = 0;       // c = a + 0.5 b over three 64 MB arrays, one thread (memory)
+  double fresh_ms_per_mb = 0;  // first write of new pages (the kernel's zeroing, host faults)
+};
+
+HostSpeed measure_host() {
+  HostSpeed h;
+  volatile double seed = 1.0;  // not known to the compiler: the chain is computed
+  double x = seed;
+  constexpr long kSteps = 40'000'000;
+  auto t0 = diffusion::Clock::now();
+  for (long i = 0; i < kSteps; ++i) x = x * 0.999999 + 1e-7;
+  h.chain_ns = diffusion::ms_since(t0) * 1e6 / kSteps;
+  seed = x;
+  constexpr size_t kFloats = size_t(64) << 18;  // 64 MB of floats per array
+  constexpr double kMb = 3 * 64.0;
+  t0 = diffusion::Clock::now();
+  std::vector<float> a(kFloats, 1.0f), b(kFloats, 2.0f), c(kFloats, 0.0f);
+  h.fresh_ms_per_mb = diffusion::ms_since(t0) / kMb;
+  double best = 1e300;
+  for (int r = 0; r < 5; ++r) {
+    t0 = diffusion::Clock::now();
+    for (size_t i = 0; i < kFloats; ++i) c[i] = a[i] + 0.5f * b[i];
+    best = std::min(best, diffusion::ms_since(t0));
+    a[r] = c[kFloats - 1 - r];  // each pass's result is used
+  }
+  h.triad_gb_s = kMb * 1.048576 / best;  // MB of 2^20 bytes per ms -> GB/s
+  return h;
+}
+
+json host_json(const HostSpeed& h) {
+  return {{"dependent_multiply_add_ns", h.chain_ns},
+          {"triad_one_thread_gb_s", h.triad_gb_s},
+          {"fresh_pages_ms_per_mb", h.fresh_ms_per_mb}};
+}
+
 }  // namespace
 
 int run_frame_table(const std::vector<std::string>&) {
   const fs::path exe_dir = fs::canonical("/proc/self/exe").parent_path();
   const std::string self = (exe_dir / "wisp-bench").string(), wisp = (exe_dir / "wisp").string();
   std::vector<Row> rows;
+  std::fprintf(stderr, "frame-table: host\n");
+  const HostSpeed host_before = measure_host();
 
   std::fprintf(stderr, "frame-table: render\n");
   const json render = parse_or_null(output_of(self + " render"));
@@ -201,7 +245,11 @@ int run_frame_table(const std::vector<std::string>&) {
                   "<= 30 ms; a command loads what it uses", help.first <= 30});
   fs::remove_all(dir);
 
-  json out = {{"benchmark", "frame-table"}, {"rows", json::array()}};
+  // The host again: a table whose two readings differ was measured while the host changed.
+  const HostSpeed host_after = measure_host();
+  json out = {{"benchmark", "frame-table"},
+              {"host", {{"before", host_json(host_before)}, {"after", host_json(host_after)}}},
+              {"rows", json::array()}};
   for (const Row& r : rows)
     out["rows"].push_back(
         {{"work", r.work}, {"measured", r.measured}, {"target", r.target}, {"meets", r.meets}});
