@@ -15,6 +15,7 @@
 #include "vector/hidden_wisps.hpp"
 #include "vector/ink.hpp"
 #include "vector/planar_map.hpp"
+#include "vector/size_hint.hpp"
 
 namespace wisp::vector {
 
@@ -139,6 +140,8 @@ struct Resolver {
       for (int h = 0; h < 2 * map.edge_count(); ++h) put(map.halfedges[h].face, h);
     });
     cover_pool.clear();
+    thread_local SizeHint pool_size;
+    pool_size.reserve(cover_pool);
     cover_at.assign(map.faces.size(), {0, 0});
     std::vector<char> seen(map.faces.size(), 0);
     std::vector<int>& queue = pool_order;
@@ -169,6 +172,7 @@ struct Resolver {
     }
     for (int f = 0; f < int(map.faces.size()); ++f)
       if (!seen[f]) queue.push_back(f);  // not reached: an empty cover
+    pool_size.remember(cover_pool);
   }
 
   // Per face, an interior point: the middle of the widest span cut from the face by one of three
@@ -198,6 +202,8 @@ struct Resolver {
     }
     // The crossings, found once, then grouped by (face, line).
     std::vector<std::pair<int, double>> found;
+    thread_local SizeHint found_size;
+    found_size.reserve(found);
     for (int h = 0; h < 2 * edges; ++h) {
       const int f = map.halfedges[h].face;
       if (!wanted[f]) continue;
@@ -210,6 +216,7 @@ struct Resolver {
           found.emplace_back(3 * f + k, a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
     }
+    found_size.remember(found);
     Buckets<double> xs = bucket<double>(3 * faces, [&](const auto& put) {
       for (const auto& [key, x] : found) put(key, x);
     });
@@ -492,6 +499,8 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   const auto t0 = Clock::now();
   const double cpu0 = diffusion::thread_cpu_ms();
   std::vector<OutlineSegment> segments;
+  thread_local SizeHint segments_size;
+  segments_size.reserve(segments);
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
     ++out.stats.wisps;
@@ -542,6 +551,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
                            v.corner(v.TopLeft)};
     for (int i = 0; i < 4; ++i) segments.push_back({c[i], c[(i + 1) % 4]});
   }
+  segments_size.remember(segments);
   if (options.cull_hidden) {
     const auto tc = Clock::now();
     HiddenWispOptions cull;

@@ -30,6 +30,7 @@
 
 #include "vector/buckets.hpp"
 #include "vector/planar_map.hpp"
+#include "vector/size_hint.hpp"
 
 namespace wisp::vector {
 
@@ -282,12 +283,15 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
 
   // Every point where segments meet, as splits of the segments.
   std::vector<Split> splits;
+  thread_local SizeHint splits_size, crossings_size;
+  splits_size.reserve(splits);
   splits.reserve(4 * size_t(n));
   for (int i = 0; i < n; ++i) {
     splits.push_back({i, 0, 1, end_id[2 * i]});
     splits.push_back({i, 1, 1, end_id[2 * i + 1]});
   }
   std::vector<Split> crossing_at;  // per crossing id (from n_ends on)
+  crossings_size.reserve(crossing_at);
   const Grid grid = build_grid(segs);
   {
     Intersector meet{segs, end_id, splits, crossing_at, n_ends};
@@ -302,6 +306,8 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
         }
       });
   }
+  splits_size.remember(splits);
+  crossings_size.remember(crossing_at);
   const int n_points = n_ends + int(crossing_at.size());
 
   // Splits grouped by segment (stable, so in the order found), then by parameter; equal
