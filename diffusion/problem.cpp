@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -101,6 +104,22 @@ std::vector<std::uint8_t> reached_from_fixed(const Problem& p) {
   return reached;
 }
 
+namespace {
+
+// Whether no value is NaN or infinite: the largest magnitude as bits, below the exponent of all
+// ones (an integer maximum, which vectorises).
+bool all_finite(const std::vector<float>& values) {
+  std::uint32_t largest = 0;
+  for (float v : values) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    largest = std::max(largest, bits & 0x7fffffffu);
+  }
+  return largest < 0x7f800000u;
+}
+
+}  // namespace
+
 void check_problem(const Problem& p) {
   if (p.width <= 0 || p.height <= 0)
     throw std::invalid_argument("problem: image size must be positive, got " +
@@ -111,17 +130,21 @@ void check_problem(const Problem& p) {
   if (p.fixed.size() != n || p.links.size() != n || p.anchor_weight.size() != n ||
       p.value.size() != n * p.channels || (!p.rhs.empty() && p.rhs.size() != n * p.channels))
     throw std::invalid_argument("problem: array sizes do not match the image size");
-  for (float v : p.value)
-    if (!std::isfinite(v))
-      throw std::invalid_argument("problem: a fixed or anchor value is not finite");
+  // Each array is scanned whole and judged once: a test that can leave the loop at every value
+  // keeps it scalar (2.5 ms a solve at 1024^2), a flag gathered over all of them vectorises.
+  if (!all_finite(p.value))
+    throw std::invalid_argument("problem: a fixed or anchor value is not finite");
+  unsigned negative = 0, on_fixed = 0;  // (unsigned flags: bools kept the loop scalar)
+  const float* weight = p.anchor_weight.data();
+  const std::uint8_t* fixed = p.fixed.data();
   for (size_t i = 0; i < n; ++i) {
-    const float w = p.anchor_weight[i];
-    if (!(w >= 0 && std::isfinite(w)))
-      throw std::invalid_argument("problem: an anchor weight is negative or not finite");
-    if (w > 0 && p.fixed[i]) throw std::invalid_argument("problem: a fixed pixel has an anchor");
+    negative |= unsigned(!(weight[i] >= 0.0f)) |
+                unsigned(!(weight[i] <= std::numeric_limits<float>::max()));
+    on_fixed |= unsigned(weight[i] > 0.0f) & unsigned(fixed[i] != 0);
   }
-  for (float v : p.rhs)
-    if (!std::isfinite(v)) throw std::invalid_argument("problem: a right-hand side is not finite");
+  if (negative) throw std::invalid_argument("problem: an anchor weight is negative or not finite");
+  if (on_fixed) throw std::invalid_argument("problem: a fixed pixel has an anchor");
+  if (!all_finite(p.rhs)) throw std::invalid_argument("problem: a right-hand side is not finite");
   for (int y = 0; y < p.height; ++y) {
     if ((p.links[p.index(p.width - 1, y)] & kOpenEast) != 0)
       throw std::invalid_argument("problem: a link leaves the image on the east border");

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
+#include <string>
 
 #include "diffusion/multigrid.hpp"
 #include "diffusion/rasterize.hpp"
@@ -452,4 +453,42 @@ TEST_CASE("cycles that still gain 2-3x are not handed to conjugate gradients",
     CHECK(s.stats.cycles <= v.stats.cycles);
     CHECK(max_abs_difference(s.planes, exact.planes) <= bound);
   }
+}
+
+TEST_CASE("a problem with a value that is not finite, a bad anchor or a bad size is refused",
+          "[multigrid]") {
+  // Each defect is placed at the last pixel, so a scan that stops early misses it.
+  const auto base = [] {
+    Problem p = make_open_problem(33, 17, 3);
+    p.fixed[0] = 1;
+    return p;
+  };
+  const size_t last = size_t(33) * 17 - 1;
+  const auto refused = [](const Problem& p, const std::string& message) {
+    CHECK_THROWS_WITH(solve_multigrid(p), message);
+  };
+  REQUIRE_NOTHROW(solve_multigrid(base()));
+  for (float bad : {NAN, INFINITY, -INFINITY}) {
+    Problem p = base();
+    p.value[3 * last + 2] = bad;
+    refused(p, "problem: a fixed or anchor value is not finite");
+    p = base();
+    p.rhs.assign(p.value.size(), 0.0f);
+    p.rhs.back() = bad;
+    refused(p, "problem: a right-hand side is not finite");
+  }
+  for (float bad : {-1e-30f, -1.0f, NAN, INFINITY}) {
+    Problem p = base();
+    p.anchor_weight[last] = bad;
+    refused(p, "problem: an anchor weight is negative or not finite");
+  }
+  Problem anchored = base();
+  anchored.anchor_weight[0] = 0.5f;  // pixel 0 is fixed
+  refused(anchored, "problem: a fixed pixel has an anchor");
+  Problem negative_zero = base();
+  negative_zero.anchor_weight[last] = -0.0f;  // not below 0: no anchor
+  CHECK_NOTHROW(solve_multigrid(negative_zero));
+  Problem short_planes = base();
+  short_planes.value.pop_back();
+  refused(short_planes, "problem: array sizes do not match the image size");
 }
