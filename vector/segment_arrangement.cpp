@@ -284,8 +284,7 @@ PlanarMap arrange_segments(const std::vector<OutlineSegment>& input) {
   // Every point where segments meet, as splits of the segments.
   std::vector<Split> splits;
   thread_local SizeHint splits_size, crossings_size;
-  splits_size.reserve(splits);
-  splits.reserve(4 * size_t(n));
+  splits_size.reserve(splits, 4 * size_t(n));
   for (int i = 0; i < n; ++i) {
     splits.push_back({i, 0, 1, end_id[2 * i]});
     splits.push_back({i, 1, 1, end_id[2 * i + 1]});

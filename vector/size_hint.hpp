@@ -6,6 +6,7 @@
 // kept (their memory is freed as before).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -14,9 +15,10 @@ namespace wisp::vector {
 struct SizeHint {
   std::size_t last = 0;
 
+  // Reserves an eighth more than the last size, or `at_least` if that is more: one allocation.
   template <class T>
-  void reserve(std::vector<T>& v) const {
-    v.reserve(last + last / 8);
+  void reserve(std::vector<T>& v, std::size_t at_least = 0) const {
+    v.reserve(std::max(at_least, last + last / 8));
   }
   template <class T>
   void remember(const std::vector<T>& v) {
