@@ -151,7 +151,7 @@ json host_json(const HostSpeed& h) {
 // " (median of 3 runs: 5.1 - 6.0; CPU 350 ms a frame)" for a size of `wisp-bench render`: the
 // spread says how far to trust the median on a shared machine, the CPU time is the work done.
 std::string runs_of(const json& size) {
-  const json& runs = size.value("frames_per_second_runs", json::array());
+  const json runs = size.value("frames_per_second_runs", json::array());
   if (runs.size() < 2) return "";
   const auto [lo, hi] = std::minmax_element(runs.begin(), runs.end());
   return fmt(" (median of %.0f runs: %.2f - %.2f; ", double(runs.size()), lo->get<double>(),

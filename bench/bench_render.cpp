@@ -119,23 +119,17 @@ int run_render(const std::vector<std::string>& args) {
       stage_medians.push_back(st["stage_ms_median"]);
     }
     const size_t m = median_index(fps);
-    const auto list = [](const std::vector<double>& v) {
-      std::string out;
-      char number[32];
-      for (double x : v) {
-        std::snprintf(number, sizeof number, "%.2f", x);
-        out += (out.empty() ? "" : ", ") + std::string(number);
-      }
-      return "[" + out + "]";
-    };
-    std::printf(
-        "    {\"size\": %d, \"runs\": %d, \"frames_per_second\": %.2f, "
-        "\"frames_per_second_runs\": %s, \"cpu_ms_per_frame\": %.1f, \"first_frame_ms\": %.1f, "
-        "\"first_frame_after_start_ms\": %.1f, \"peak_memory_mb\": %.0f, "
-        "\"stage_ms_median\": %s}%s\n",
-        n, runs, fps[m], list(fps).c_str(), cpu_ms_per_frame[m], first_ms[median_index(first_ms)],
-        first_after_start_ms[median_index(first_after_start_ms)], peak,
-        stage_medians[m].dump().c_str(), i + 1 < 2 ? "," : "");
+    const nlohmann::json entry = {
+        {"size", n},
+        {"runs", runs},
+        {"frames_per_second", fps[m]},
+        {"frames_per_second_runs", fps},
+        {"cpu_ms_per_frame", cpu_ms_per_frame[m]},
+        {"first_frame_ms", first_ms[median_index(first_ms)]},
+        {"first_frame_after_start_ms", first_after_start_ms[median_index(first_after_start_ms)]},
+        {"peak_memory_mb", peak},
+        {"stage_ms_median", stage_medians[m]}};
+    std::printf("    %s%s\n", entry.dump().c_str(), i + 1 < 2 ? "," : "");
     std::fflush(stdout);
   }
   std::printf("  ]\n}\n");
