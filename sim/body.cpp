@@ -356,6 +356,12 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
     const double rest = (b.neck_top - b.neck_bottom).norm();
     neck_ = build(BodyShape::kNeck, rest, limb_slices);
   }
+  // Which triangles meet across each edge does not change with the pose (a rigid motion keeps
+  // equal points equal): found once here for the occluders' depth bound.
+  for (Mesh* m : {&head_, &torso_, &arm_plus_})
+    if (!m->triangles.empty())
+      m->neighbours =
+          std::make_shared<const EdgeNeighbours>(edge_neighbours(m->vertices, m->triangles));
 }
 
 BodySurface BodyModel::placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
@@ -367,6 +373,7 @@ BodySurface BodyModel::placed(int part, int solid, const Mesh& m, const Eigen::I
   s.normals.reserve(m.normals.size());
   for (const Vector3d& n : m.normals) s.normals.push_back(frame.linear() * n);
   s.triangles = m.triangles;
+  s.neighbours = m.neighbours;
   return s;
 }
 

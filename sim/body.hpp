@@ -27,12 +27,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <vector>
 
 #include "sim/camera.hpp"
 #include "sim/face.hpp"
 #include "sim/head.hpp"
 #include "sim/params.hpp"
+#include "sim/surface_rays.hpp"
 #include "sim/sweep.hpp"
 
 namespace wisp::sim {
@@ -135,6 +137,9 @@ struct BodySurface {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3d> normals;    // unit outward normals of the smooth surface
   std::vector<Eigen::Vector3i> triangles;  // outward counter-clockwise
+  // The mesh's edge_neighbours (sim/surface_rays.hpp), found once and shared by its poses; null
+  // where the mesh is built per frame.
+  std::shared_ptr<const EdgeNeighbours> neighbours;
 };
 
 // A surface as the camera sees it. Pixels have x right, y down (as ProjectedStrand::pixel); front
@@ -197,6 +202,7 @@ class BodyModel {
   struct Mesh {
     std::vector<Eigen::Vector3d> vertices, normals;  // local to the solid's frame
     std::vector<Eigen::Vector3i> triangles;
+    std::shared_ptr<const EdgeNeighbours> neighbours;
   };
   // Mesh m moved to `frame`, as surface `part` of solid `solid`.
   static BodySurface placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
@@ -14,11 +15,15 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 
 SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vector3i> triangles,
-                         const Camera& camera, bool with_folds)
+                         const Camera& camera, bool with_folds,
+                         std::shared_ptr<const EdgeNeighbours> neighbours)
     : vertex_(std::move(vertices)),
       triangle_(std::move(triangles)),
       camera_(camera),
-      with_folds_(with_folds) {
+      with_folds_(with_folds),
+      neighbour_(std::move(neighbours)) {
+  if (neighbour_ && neighbour_->size() != triangle_.size())
+    throw std::invalid_argument("SurfaceRays: edge neighbours of another mesh");
   const size_t n = vertex_.size(), count = triangle_.size();
   for (const Eigen::Vector3i& t : triangle_)
     for (int c = 0; c < 3; ++c)
@@ -70,47 +75,73 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
         binned_[size_t(fill[size_t(y) * cells_ + x]++)] = int(t);
 }
 
-// Fold edges: on the mesh's border, shared by more than two triangles, or with both triangles on
-// one side of the edge in the picture. Elsewhere the picture is covered on both sides of an edge.
-void SurfaceRays::find_folds() const {
+EdgeNeighbours edge_neighbours(const std::vector<Vector3d>& vertices,
+                               const std::vector<Eigen::Vector3i>& triangles) {
+  // Vertices at one position get one id (the rank of the first of them in position order); an
+  // edge is the pair of its corners' ids.
+  const int nv = int(vertices.size());
+  std::vector<int> by_position(size_t(nv), 0), id(size_t(nv), 0);
+  for (int v = 0; v < nv; ++v) by_position[size_t(v)] = v;
+  const auto before = [&](int a, int b) {
+    const Vector3d &p = vertices[size_t(a)], &q = vertices[size_t(b)];
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  std::sort(by_position.begin(), by_position.end(),
+            [&](int a, int b) { return before(a, b) || (!before(b, a) && a < b); });
+  for (int k = 0; k < nv; ++k) {
+    const int v = by_position[size_t(k)], prev = k > 0 ? by_position[size_t(k - 1)] : -1;
+    id[size_t(v)] =
+        prev >= 0 && vertices[size_t(v)] == vertices[size_t(prev)] ? id[size_t(prev)] : k;
+  }
   struct Use {
-    std::array<double, 6> key;  // the edge's corners, lower first
-    int use;                    // 3 * triangle + edge
+    std::uint64_t key;  // the edge's corner ids, lower first
+    int use;            // 3 * triangle + edge
   };
   std::vector<Use> uses;
-  uses.reserve(3 * triangle_.size());
-  for (int t = 0; t < int(triangle_.size()); ++t)
+  uses.reserve(3 * triangles.size());
+  for (int t = 0; t < int(triangles.size()); ++t)
     for (int e = 0; e < 3; ++e) {
-      // By position, not by index: a seam's vertices are repeated.
-      const Vector3d &a = corner(t, e), &b = corner(t, (e + 1) % 3);
-      const bool lower =
-          std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-      const Vector3d &u = lower ? a : b, &v = lower ? b : a;
-      uses.push_back({{u.x(), u.y(), u.z(), v.x(), v.y(), v.z()}, 3 * t + e});
+      const std::uint64_t a = std::uint32_t(id[size_t(triangles[t][e])]),
+                          b = std::uint32_t(id[size_t(triangles[t][(e + 1) % 3])]);
+      uses.push_back({std::min(a, b) << 32 | std::max(a, b), 3 * t + e});
     }
   std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
     return x.key != y.key ? x.key < y.key : x.use < y.use;
   });
-  fold_.assign(triangle_.size(), {true, true, true});
-  neighbour_.assign(triangle_.size(), {-1, -1, -1});
+  EdgeNeighbours out(triangles.size(), {-1, -1, -1});
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i + 1;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    if (j - i == 2) {
+      const int u0 = uses[i].use, u1 = uses[i + 1].use;
+      out[size_t(u0 / 3)][size_t(u0 % 3)] = u1;
+      out[size_t(u1 / 3)][size_t(u1 % 3)] = u0;
+    }
+    i = j;
+  }
+  return out;
+}
+
+// Fold edges: on the mesh's border, shared by more than two triangles, or with both triangles on
+// one side of the edge in the picture. Elsewhere the picture is covered on both sides of an edge.
+void SurfaceRays::find_folds() const {
+  if (!neighbour_)
+    neighbour_ = std::make_shared<const EdgeNeighbours>(edge_neighbours(vertex_, triangle_));
+  const EdgeNeighbours& across = *neighbour_;
   const auto apex_side = [&](int use, int other) {
     const Vector2d a = corner_pixel(use / 3, use % 3), b = corner_pixel(use / 3, (use % 3 + 1) % 3);
     const Vector2d apex = corner_pixel(other / 3, (other % 3 + 2) % 3);
     const Vector2d ab = b - a, ap = apex - a;
     return ab.x() * ap.y() - ab.y() * ap.x();
   };
-  for (size_t i = 0; i < uses.size();) {
-    size_t j = i + 1;
-    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2) {
-      const int u0 = uses[i].use, u1 = uses[i + 1].use;
+  fold_.assign(triangle_.size(), {true, true, true});
+  for (int t = 0; t < int(triangle_.size()); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int u0 = 3 * t + e, u1 = across[size_t(t)][size_t(e)];
+      if (u1 < 0 || u1 < u0) continue;  // each pair once, from its lower use
       const bool fold = !(apex_side(u0, u0) * apex_side(u0, u1) < 0);
-      fold_[u0 / 3][u0 % 3] = fold_[u1 / 3][u1 % 3] = fold;
-      neighbour_[u0 / 3][u0 % 3] = u1 / 3;
-      neighbour_[u1 / 3][u1 % 3] = u0 / 3;
+      fold_[size_t(t)][size_t(e)] = fold_[size_t(u1 / 3)][size_t(u1 % 3)] = fold;
     }
-    i = j;
-  }
 }
 
 int SurfaceRays::cell_x(double x) const {
@@ -218,8 +249,9 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
     for (const Vector3d& dk : d) nearest = std::min(nearest, n.dot(dk));
     if (!(reach > 0 && nearest > 0)) return INFINITY;
     worst = std::max(worst, reach * longest / nearest);
-    for (int u : neighbour_[t])
-      if (u >= 0 && std::find(seen.begin(), seen.end(), u) == seen.end()) {
+    for (int across : (*neighbour_)[size_t(t)])
+      if (const int u = across / 3;
+          across >= 0 && std::find(seen.begin(), seen.end(), u) == seen.end()) {
         seen.push_back(u);
         if (meets_box(u)) layer.push_back(u);
       }

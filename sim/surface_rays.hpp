@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <mutex>
 #include <utility>
 #include <vector>
@@ -16,14 +17,24 @@
 
 namespace wisp::sim {
 
+// Per triangle, per edge (corner e to e + 1): the edge of the triangle across it as 3 * triangle +
+// edge, or -1 where no single triangle is (the mesh's border, an edge of three or more). By
+// position, not by index: a seam's vertices are repeated. It depends on the mesh alone, so posed
+// copies of one mesh can share the one found for it.
+using EdgeNeighbours = std::vector<std::array<int, 3>>;
+EdgeNeighbours edge_neighbours(const std::vector<Eigen::Vector3d>& vertices,
+                               const std::vector<Eigen::Vector3i>& triangles);
+
 class SurfaceRays {
  public:
   // `vertices`: world space; `triangles`: their indices (each vertex is a corner of about six
   // triangles: it is projected once). `with_folds`: max_depth is wanted, which needs the edges
   // where the surface's picture folds (it is +infinity without them); they are found at its
-  // first call, so a surface whose bound nobody asks for does not pay for them.
+  // first call, so a surface whose bound nobody asks for does not pay for them. `neighbours`:
+  // the mesh's edge_neighbours if known (found with the folds otherwise).
   SurfaceRays(std::vector<Eigen::Vector3d> vertices, std::vector<Eigen::Vector3i> triangles,
-              const Camera& camera, bool with_folds = false);
+              const Camera& camera, bool with_folds = false,
+              std::shared_ptr<const EdgeNeighbours> neighbours = nullptr);
   SurfaceRays(const SurfaceRays&) = delete;
   SurfaceRays& operator=(const SurfaceRays&) = delete;
 
@@ -74,7 +85,7 @@ class SurfaceRays {
   // Filled once, by the first max_depth (which may be called from several threads).
   mutable std::once_flag folds_found_;
   mutable std::vector<std::array<bool, 3>> fold_;  // per triangle edge (corner e to e + 1): a fold
-  mutable std::vector<std::array<int, 3>> neighbour_;  // the triangle across it, -1 if none
+  mutable std::shared_ptr<const EdgeNeighbours> neighbour_;
 };
 
 }  // namespace wisp::sim

@@ -61,7 +61,8 @@ std::vector<vector::Occluder> body_occluders(const sim::BodyModel& body, const s
         surface.part == sim::kBodyHead && head
             ? head
             : std::make_shared<const sim::SurfaceRays>(std::move(surface.vertices),
-                                                       std::move(surface.triangles), camera, true);
+                                                       std::move(surface.triangles), camera, true,
+                                                       surface.neighbours);
     std::vector<Vector2d> points;
     points.reserve(corners.size());
     for (int v : corners) points.push_back(s->pixels()[size_t(v)]);

@@ -258,9 +258,9 @@ std::shared_ptr<const sim::SurfaceRays> frame_head_rays(const SceneFrames& frame
   const sim::BodyModel& model = occluder ? *frames.body : *frames.head;
   sim::BodySurface head = model.head_surface(frames.anim.frames.at(k).head);
   // With folds: the occluders' depth bound needs them (found when first asked for).
-  return std::make_shared<const sim::SurfaceRays>(std::move(head.vertices),
-                                                  std::move(head.triangles),
-                                                  sim::Camera::look_at(frames.scene.camera), true);
+  return std::make_shared<const sim::SurfaceRays>(
+      std::move(head.vertices), std::move(head.triangles),
+      sim::Camera::look_at(frames.scene.camera), true, head.neighbours);
 }
 
 std::vector<vector::Occluder> frame_occluders(const SceneFrames& frames, int k,
