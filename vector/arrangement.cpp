@@ -1,6 +1,7 @@
-// build_arrangement: flattens the wisps into outline segments, lets CGAL arrange them
-// (arrangement_cgal.cpp), then decides on the plain planar map: winding numbers per face, the
-// front-most wisp per face, visibility per outline piece, the hair mask and the ink polylines.
+// build_arrangement: flattens the wisps into outline segments, leaves out the provably hidden
+// wisps, adds the depth seams, arranges them all (segment_arrangement.cpp), then decides on the
+// plain planar map: winding numbers per face, the front-most wisp per face, visibility per outline
+// piece, the hair mask and the ink polylines.
 #include "vector/arrangement.hpp"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "diffusion/timer.hpp"
 #include "vector/band_depth.hpp"
 #include "vector/buckets.hpp"
+#include "vector/depth_seams.hpp"
 #include "vector/hidden_wisps.hpp"
 #include "vector/ink.hpp"
 #include "vector/planar_map.hpp"
@@ -25,6 +27,8 @@ namespace {
 
 using diffusion::Clock;
 using diffusion::ms_since;
+
+constexpr int kSeamId = -2;  // the id of depth seams' segments (the view frame's is -1)
 
 using Winding = std::pair<int, int>;  // (wisp, winding != 0)
 using Cover = std::vector<Winding>;   // sorted by wisp
@@ -376,9 +380,16 @@ struct Resolver {
     return false;
   }
 
+  // Only depth seams run along edge e: no outline, so no ink line.
+  bool seam_edge(int e) const {
+    for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
+      if (source_wisp[i] != kSeamId) return false;
+    return true;
+  }
+
   bool frame_edge(int e) const {
     for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i)
-      if (source_wisp[i] < 0) return true;
+      if (source_wisp[i] == -1) return true;
     return false;
   }
 
@@ -455,15 +466,17 @@ struct Resolver {
       ve.face_right = map.halfedges[2 * e + 1].face;
       for (int i = map.source_begin[e]; i < map.source_begin[e + 1]; ++i) {
         const OutlineSegment& seg = segments[map.sources[i].segment];
-        // Occluder k appears as source -2 - k, the hair base as -1 with `base` set.
-        const bool base = seg.wisp == base_id();
-        ViewEdgeSource s{is_wisp(seg.wisp) || seg.wisp < 0 || base ? (base ? -1 : seg.wisp)
-                                                                   : -2 - (seg.wisp - n_wisps()),
-                         seg.side,
-                         0,
-                         0,
-                         visible[i] != 0,
-                         base};
+        // Occluder k appears as source -2 - k, the hair base and depth seams as -1 with `base`
+        // or `seam` set.
+        const bool base = seg.wisp == base_id(), seam = seg.wisp == kSeamId;
+        ViewEdgeSource s;
+        s.wisp = is_wisp(seg.wisp)                ? seg.wisp
+                 : seg.wisp >= n_wisps() && !base ? -2 - (seg.wisp - n_wisps())
+                                                  : -1;
+        s.side = seg.side;
+        s.visible = visible[i] != 0;
+        s.base = base;
+        s.seam = seam;
         if (is_wisp(seg.wisp) || base) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
         ve.sources.push_back(s);
       }
@@ -552,19 +565,36 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     for (int i = 0; i < 4; ++i) segments.push_back({c[i], c[(i + 1) % 4]});
   }
   segments_size.remember(segments);
-  if (options.cull_hidden) {
+  // What other wisps or occluders provably hide: whole wisps are left out of the sweep, hidden
+  // cells get no depth seams.
+  HiddenParts hidden;
+  if (options.cull_hidden || options.depth_seams) {
     const auto tc = Clock::now();
     HiddenWispOptions cull;
     for (const Occluder& o : options.occluders) cull.occluder_max_depth.push_back(o.max_depth);
-    const std::vector<char> hidden = hidden_wisps(wisps, segments, cull);
-    const auto kept_end = std::remove_if(segments.begin(), segments.end(), [&](const auto& s) {
-      return s.wisp >= 0 && s.wisp < int(wisps.size()) && hidden[s.wisp];
-    });
-    out.stats.hidden_segments = int(segments.end() - kept_end);
-    segments.erase(kept_end, segments.end());
-    for (char h : hidden) out.stats.hidden_wisps += h;
-    out.stats.wisps -= out.stats.hidden_wisps;
+    hidden = hidden_wisps(wisps, segments, cull);
+    if (options.cull_hidden) {
+      const auto kept_end = std::remove_if(segments.begin(), segments.end(), [&](const auto& s) {
+        return s.wisp >= 0 && s.wisp < int(wisps.size()) && hidden.wisps[s.wisp];
+      });
+      out.stats.hidden_segments = int(segments.end() - kept_end);
+      segments.erase(kept_end, segments.end());
+      for (char h : hidden.wisps) out.stats.hidden_wisps += h;
+      out.stats.wisps -= out.stats.hidden_wisps;
+    }
     out.stats.cull_ms = ms_since(tc);
+  }
+  if (options.depth_seams) {
+    const auto ts = Clock::now();
+    std::vector<char> used(wisps.size(), 0);
+    for (const OutlineSegment& s : segments)
+      if (s.wisp >= 0 && s.wisp < int(wisps.size())) used[s.wisp] = 1;
+    const std::vector<OutlineSegment> seams =
+        depth_seams(wisps, used, hidden.cells, kSeamId,
+                    options.clip_to_view ? options.view : Eigen::AlignedBox2d());
+    out.stats.seam_segments = int(seams.size());
+    segments.insert(segments.end(), seams.begin(), seams.end());
+    out.stats.seams_ms = ms_since(ts);
   }
   const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);
   out.stats.sweep_ms = ms_since(t0);
@@ -599,7 +629,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     if (r.hair[fl] != r.hair[fr] && !r.frame_edge(e)) silhouette[e] = r.front[r.hair[fl] ? fl : fr];
     if (silhouette[e] >= 0 && !options.occluders.empty() && r.occluder_edge(e))
       cuts[e] = silhouette[e];
-    if (r.hair[fl] && r.hair[fr] && r.front[fl] != r.front[fr]) {
+    if (r.hair[fl] && r.hair[fr] && r.front[fl] != r.front[fr] && !r.seam_edge(e)) {
       const int w = r.visible_wisp(e);
       occlusion[e] = w >= 0 ? w : std::min(r.front[fl], r.front[fr]);
     }

@@ -5,6 +5,8 @@
 //    unbounded face across edges (crossing an outline changes its wisp's winding by one);
 //  - depth order: the front-most covering wisp of a face is the one nearest the eye at one
 //    interior sample point of the face (depth inside a wisp is that of its centre cross-section);
+//    the faces are split where two covering wisps swap depth order (vector/depth_seams.hpp), so
+//    that sample decides every point of the face;
 //  - visibility: an outline piece is visible where its wisp is front-most on either side of it
 //    (and no other pass of the same wisp lies in front of it, for curls that overlap themselves).
 // From these follow the hair mask (union of covered faces, holes kept), the silhouette and the
@@ -54,14 +56,16 @@ struct ArrangementOptions {
   // without them), and the inspector draws them.
   bool keep_faces = false;
   bool front_regions = false;  // fill WispArrangement::front_regions
-  // Leave out before the sweep the wisps that other wisps provably hide everywhere
+  // Split the faces along the lines where two overlapping wisps swap depth order
+  // (vector/depth_seams.hpp): then the one depth sample that decides a face's front wisp decides
+  // it for every point of the face, and the picture no longer depends on how the outlines happen
+  // to subdivide the hair. Seams of cells that something nearer provably hides are left out.
+  bool depth_seams = true;
+  // Leave out before the sweep the wisps that other wisps or occluders provably hide everywhere
   // (vector/hidden_wisps.hpp): no wisp that could be a face's front is dropped, and the faces and
   // edges inside the hair are fewer (about half the sweep's intersections on the curly scene).
-  // Off by default: where a dropped outline merges faces, the resolver's one depth sample per face
-  // decides the merged face as a whole, and the outlines of hidden wisps had been refining those
-  // decisions; `wisp-bench quality 512` on the curly scene went from p99 11.8 to 14.8 (toon) and
-  // 10.9 to 14.1 (anime) with it on, over the bar (docs/performance.md, "Culling hidden wisps").
-  bool cull_hidden = false;
+  // With the depth seams no face's front depends on the outlines left out (docs/vector.md 5b).
+  bool cull_hidden = true;
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
   // Null: ours (exact predicates on snapped input). `wisp-bench arrangement` passes
@@ -92,11 +96,13 @@ struct ArrangementStats {
   int wisps = 0;  // wisps inserted (after culling those wholly outside the view or hidden)
   int hidden_wisps = 0, hidden_segments = 0;  // left out as hidden (cull_hidden)
   int segments = 0;                           // input segments, frame sides included
+  int seam_segments = 0;                      // of them, depth seams (vector/depth_seams.hpp)
   int vertices = 0, edges = 0, faces = 0;
   int covered_faces = 0;
-  int intersections = 0;  // vertices where outlines cross or touch
-  double sweep_ms = 0;    // CGAL insertion and export, and the cull before it
-  double cull_ms = 0;     // the cull alone
+  int intersections = 0;  // vertices where outlines (or depth seams) cross or touch
+  double sweep_ms = 0;    // the sweep, and the cull and the depth seams before it
+  double cull_ms = 0;     // the cull alone (the hidden wisps and cells)
+  double seams_ms = 0;    // the depth seams
   double resolve_ms = 0;  // coverage, depth order, visibility, mask, polylines
   double sweep_cpu_ms = 0, resolve_cpu_ms = 0;  // the same as CPU time of the calling thread
 };

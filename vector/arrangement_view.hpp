@@ -28,11 +28,12 @@ struct ViewFace {
 
 // One outline piece along an edge. Outline parameters s0 -> s1 follow the edge from `a` to `b`.
 struct ViewEdgeSource {
-  int wisp = -1;  // -1: a side of the view frame or the hair base; -2 - k: occluder k
+  int wisp = -1;  // -1: a side of the view frame, the hair base or a depth seam; -2 - k: occluder k
   Side side = Side::Left;
   double s0 = 0, s1 = 0;
   bool visible = false;
   bool base = false;  // a piece of the hair base's boundary (s0, s1 on its path)
+  bool seam = false;  // a depth seam (vector/depth_seams.hpp): where two wisps swap depth order
 };
 
 struct ViewEdge {

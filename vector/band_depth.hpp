@@ -1,9 +1,11 @@
 // Depth inside a wisp. A wisp's depth is known on its centre curve (Faraj 2009, section 3.2.1:
 // distance to the eye per sample, linear in between); a point of the band takes the depth of the
-// cross-section it lies on. On the flattened band that is: find the cells (quadrilaterals between
-// consecutive sections) containing the point and interpolate the centre depth by the point's
-// projection onto the cell's centre segment. Where a curl overlaps itself several cells contain
-// the point; the nearest one is in front.
+// cross-section it lies on. On the flattened band: each cell (the quadrilateral between two
+// consecutive sections) is cut along a diagonal into two triangles, and the depth is linear over
+// each triangle from the sections' depths at its corners. So the depth is continuous over the
+// band and affine in each triangle: where two wisps have equal depth is a line in each pair of
+// their triangles, and those lines join up across the triangles' edges (vector/depth_seams.hpp).
+// Where a curl overlaps itself several cells contain the point; the nearest one is in front.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,6 +18,20 @@
 
 namespace wisp::vector {
 
+// One of a cell's two triangles: corners and their depths, and the depth as the affine map
+// depth(p) = grad . p + offset.
+struct CellTriangle {
+  std::array<Eigen::Vector2d, 3> v;
+  std::array<double, 3> z;
+  Eigen::Vector2d grad{0, 0};
+  double offset = 0;
+  double depth(const Eigen::Vector2d& p) const { return grad.dot(p) + offset; }
+};
+
+// Cell i of the wisp (sections i and i + 1) cut along the diagonal that lies inside it; false
+// where the cell has no area (a tapered root or tip, a zero-length cell).
+bool cell_triangles(const Wisp& wisp, int i, std::array<CellTriangle, 2>& out);
+
 struct BandHit {
   double depth = 0;
   double t = 0;  // centre parameter of the cross-section
@@ -26,7 +42,8 @@ struct BandHit {
 // axis, so a lookup tests only the cells whose box reaches the point's slab, in index order: the
 // same cells contain the point as in a scan of all of them, so the answer is the same.
 struct BandCells {
-  std::vector<std::array<Eigen::Vector2d, 4>> quads;  // left_i, left_i+1, right_i+1, right_i
+  std::vector<std::array<Eigen::Vector2d, 4>> quads;   // left_i, left_i+1, right_i+1, right_i
+  std::vector<std::array<CellTriangle, 2>> triangles;  // the depth over each quad
   std::vector<Eigen::AlignedBox2d> boxes;
   int axis = 0;  // 0: slabs along x, 1: along y
   int slabs = 1;

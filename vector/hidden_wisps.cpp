@@ -24,11 +24,10 @@
 //  - covers: no edge and winding != 0: every face meeting the square has the wisp in its cover;
 //  - reaches: edge or winding != 0: a face with the wisp in its cover can only meet such squares;
 //  - lo, hi: the smallest and largest depth over the square of the band cells that meet it.
-//    band_depth (the resolver's depth) interpolates two sections' depths by the projection onto
-//    the cell's centre segment, clamped, in a cell that contains the point or, for a point a
-//    rounding error outside, the nearest one; over the square that projection lies between its
-//    values at the square's corners, so the wisp's depth lies in [lo, hi] (to rounding, which
-//    the margin absorbs).
+//    band_depth (the resolver's depth) is affine over each of a cell's two triangles, in a cell
+//    that contains the point or, for a point a rounding error outside, the nearest one, and lies
+//    between the cell's two sections' depths: so the wisp's depth lies in [lo, hi], taken over
+//    the cells whose boxes meet the square (to rounding, which the margin absorbs).
 // An occluder covers the squares inside its ring (the same winding test), with its own upper
 // bound of depth over the square for hi (sim::SurfaceRays::max_depth for the body).
 // front[c] = the smallest hi of whatever covers square c. A wisp d is culled when every square it
@@ -70,33 +69,6 @@ bool meets(const Vector2d& a, const Vector2d& b, const Vector2d& lo, const Vecto
     if (t0 > t1) return false;
   }
   return true;
-}
-
-double cross(const Vector2d& u, const Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
-}
-
-// Whether the quadrilateral turns one way at every corner (or not at all).
-bool is_convex(const std::array<Vector2d, 4>& q) {
-  bool pos = false, neg = false;
-  for (int i = 0; i < 4; ++i) {
-    const double c = cross(q[(i + 1) % 4] - q[i], q[(i + 2) % 4] - q[(i + 1) % 4]);
-    pos |= c > 0, neg |= c < 0;
-  }
-  return !(pos && neg);
-}
-
-// Whether one of a convex quadrilateral's edge lines separates it from the box [lo, hi].
-bool separated(const std::array<Vector2d, 4>& q, const Vector2d& lo, const Vector2d& hi) {
-  const Vector2d box[4] = {lo, hi, Vector2d(lo.x(), hi.y()), Vector2d(hi.x(), lo.y())};
-  for (int i = 0; i < 4; ++i) {
-    const Vector2d n(q[(i + 1) % 4].y() - q[i].y(), q[i].x() - q[(i + 1) % 4].x());
-    double q0 = kInf, q1 = -kInf, b0 = kInf, b1 = -kInf;
-    for (const Vector2d& p : q) q0 = std::min(q0, n.dot(p)), q1 = std::max(q1, n.dot(p));
-    for (const Vector2d& p : box) b0 = std::min(b0, n.dot(p)), b1 = std::max(b1, n.dot(p));
-    if (q1 < b0 || b1 < q0) return true;
-  }
-  return false;
 }
 
 struct Grid {
@@ -196,37 +168,21 @@ WispSquares wisp_squares(const Grid& g, const Wisp& wisp, const std::vector<Outl
   q.lo.assign(n, kInf);
   q.hi.assign(n, -kInf);
 
-  // Depth bounds from the band cells that meet each square: over the square, the cell's depth
-  // (interpolated by the projection onto its centre segment, clamped) lies between its values at
-  // the square's corners.
+  // Depth bounds from the band cells whose boxes meet each square: a cell's depth lies between
+  // its two sections' depths (vector/band_depth.hpp), and every cell holding a point of the square
+  // has a box that meets it. (A cell's box meeting a square it does not only loosens the bounds.)
   for (size_t k = 0; k + 1 < wisp.sections.size(); ++k) {
     const Section &a = wisp.sections[k], &b = wisp.sections[k + 1];
-    const std::array<Vector2d, 4> quad = {a.left, b.left, b.right, a.right};
     Eigen::AlignedBox2d cell(a.left);
     for (const Vector2d& p : {b.left, b.right, a.right}) cell.extend(p);
-    const bool convex = is_convex(quad);
-    const Vector2d ab = b.centre - a.centre;
-    const double len2 = ab.squaredNorm();
+    const double zlo = std::min(a.depth, b.depth), zhi = std::max(a.depth, b.depth);
     const int c0 = g.col(cell.min().x() - kEps), c1 = g.col(cell.max().x() + kEps);
     const int r0 = g.row(cell.min().y() - kEps), r1 = g.row(cell.max().y() + kEps);
     for (int j = std::max(r0, q.j0); j <= std::min(r1, j1); ++j)
       for (int i = std::max(c0, q.i0); i <= std::min(c1, i1); ++i) {
-        const Vector2d lo = g.lo(i, j), hi = g.hi(i, j);
-        if (convex && separated(quad, lo, hi)) continue;
-        double l0 = 0.5, l1 = 0.5;
-        if (len2 > 0) {
-          l0 = kInf, l1 = -kInf;
-          for (const Vector2d& c : {lo, hi, Vector2d(lo.x(), hi.y()), Vector2d(hi.x(), lo.y())}) {
-            const double l = (c - a.centre).dot(ab) / len2;
-            l0 = std::min(l0, l), l1 = std::max(l1, l);
-          }
-          l0 = std::clamp(l0, 0.0, 1.0), l1 = std::clamp(l1, 0.0, 1.0);
-        }
-        const double z0 = a.depth + l0 * (b.depth - a.depth);
-        const double z1 = a.depth + l1 * (b.depth - a.depth);
         const int at = q.at(i, j);
-        q.lo[at] = std::min(q.lo[at], std::min(z0, z1));
-        q.hi[at] = std::max(q.hi[at], std::max(z0, z1));
+        q.lo[at] = std::min(q.lo[at], zlo);
+        q.hi[at] = std::max(q.hi[at], zhi);
       }
   }
 
@@ -236,12 +192,15 @@ WispSquares wisp_squares(const Grid& g, const Wisp& wisp, const std::vector<Outl
 
 }  // namespace
 
-std::vector<char> hidden_wisps(const std::vector<Wisp>& wisps,
-                               const std::vector<OutlineSegment>& segments,
-                               const HiddenWispOptions& options) {
+HiddenParts hidden_wisps(const std::vector<Wisp>& wisps,
+                         const std::vector<OutlineSegment>& segments,
+                         const HiddenWispOptions& options) {
   const int n = int(wisps.size());
-  std::vector<char> hidden(n, 0);
-  if (n == 0 || segments.empty()) return hidden;
+  HiddenParts out;
+  out.wisps.assign(n, 0);
+  out.cells.resize(n);
+  std::vector<char>& hidden = out.wisps;
+  if (n == 0 || segments.empty()) return out;
 
   std::vector<std::vector<int>> mine(n);
   Eigen::AlignedBox2d all;
@@ -252,7 +211,7 @@ std::vector<char> hidden_wisps(const std::vector<Wisp>& wisps,
   for (int w = 0; w < n; ++w)
     for (const Section& s : wisps[w].sections)
       if (!mine[w].empty()) all.extend(s.left), all.extend(s.right);
-  if (!all.sizes().allFinite()) return hidden;
+  if (!all.sizes().allFinite()) return out;
 
   // The squares tile the segments' box with one square to spare on each side; a box too large
   // for a few million squares gets larger ones.
@@ -329,7 +288,30 @@ std::vector<char> hidden_wisps(const std::vector<Wisp>& wisps,
       }
     hidden[d] = culled;
   }
-  return hidden;
+
+  // Cells: every square the cell's box meets. A cell's depth is at least its sections' least.
+  for (int d = 0; d < n; ++d) {
+    if (mine[d].empty() || hidden[d]) continue;
+    const std::vector<Section>& sec = wisps[d].sections;
+    std::vector<char>& cells = out.cells[d];
+    cells.assign(sec.size() - 1, 0);
+    for (size_t k = 0; k + 1 < sec.size(); ++k) {
+      const Section &a = sec[k], &b = sec[k + 1];
+      Eigen::AlignedBox2d cell(a.left);
+      for (const Vector2d& p : {b.left, b.right, a.right}) cell.extend(p);
+      const double lo = std::min(a.depth, b.depth);
+      const int c0 = g.col(cell.min().x() - kEps), c1 = g.col(cell.max().x() + kEps);
+      const int r0 = g.row(cell.min().y() - kEps), r1 = g.row(cell.max().y() + kEps);
+      bool behind_all = true;
+      for (int j = r0; j <= r1 && behind_all; ++j)
+        for (int i = c0; i <= c1 && behind_all; ++i) {
+          const size_t c = size_t(j) * g.nx + i;
+          behind_all = behind(lo, front[c]) || behind(lo, nearest(c, i, j));
+        }
+      cells[k] = behind_all;
+    }
+  }
+  return out;
 }
 
 }  // namespace wisp::vector

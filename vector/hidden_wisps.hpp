@@ -22,11 +22,19 @@ struct HiddenWispOptions {
   std::vector<std::function<double(const Eigen::AlignedBox2d&)>> occluder_max_depth;
 };
 
-// Per wisp, 1 where it can be left out: every square its outline or inside may reach is wholly
-// covered by another wisp or an occluder that is nearer the eye than it all over the square.
-// `segments` are the arrangement's input (vector/planar_map.hpp); wisps with no segment get 0.
-std::vector<char> hidden_wisps(const std::vector<Wisp>& wisps,
-                               const std::vector<OutlineSegment>& segments,
-                               const HiddenWispOptions& options);
+struct HiddenParts {
+  std::vector<char> wisps;  // per wisp, 1 where it can be left out of the sweep
+  // Per wisp that is not left out, per cell (sections i and i + 1): 1 where something covering
+  // every square the cell's box meets is nearer than all of the cell. No face's front can then be
+  // the wisp inside the cell, so no depth seam of it can matter (vector/depth_seams.hpp).
+  std::vector<std::vector<char>> cells;
+};
+
+// A wisp can be left out where every square its outline or inside may reach is wholly covered by
+// another wisp or an occluder that is nearer the eye than it all over the square. `segments` are
+// the arrangement's input (vector/planar_map.hpp); wisps with no segment get 0 and no cells.
+HiddenParts hidden_wisps(const std::vector<Wisp>& wisps,
+                         const std::vector<OutlineSegment>& segments,
+                         const HiddenWispOptions& options);
 
 }  // namespace wisp::vector

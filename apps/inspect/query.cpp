@@ -154,6 +154,10 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
                              s.visible ? "visible" : "hidden"));
         continue;
       }
+      if (s.seam) {
+        out.push_back("  source: a depth seam (two wisps swap depth order here)");
+        continue;
+      }
       if (s.wisp < 0) {
         out.push_back("  source: a side of the view frame");
         continue;
@@ -232,6 +236,7 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
     for (const vector::ViewEdgeSource& s : e.sources)
       sources.push_back({{"wisp", s.wisp},
                          {"side", s.base       ? "base"
+                                  : s.seam     ? "seam"
                                   : s.wisp < 0 ? "frame"
                                                : vector::to_string(s.side)},
                          {"s", {s.s0, s.s1}},

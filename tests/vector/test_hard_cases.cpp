@@ -28,11 +28,14 @@ vector::Wisp wisp_of(const sim::ProjectedStrand& s, double width = 0.05) {
   return *w;
 }
 
+// Without the cull of hidden wisps (tested on its own in test_hidden_wisps.cpp), so that every
+// wisp's coverage and visibility are decided by the arrangement.
 vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps, bool clip = true) {
   vector::ArrangementOptions o;
   o.view = vector::image_rect(512, 512);
   o.clip_to_view = clip;
   o.keep_faces = true;
+  o.cull_hidden = false;
   return vector::build_arrangement(wisps, o);
 }
 
@@ -127,6 +130,12 @@ TEST_CASE("containment without crossings, in front and behind", "[vector][hard]"
       CHECK(f.front == 0);
       CHECK(arr.visible[1].empty());
       CHECK(arr.occlusion.empty());
+      // The cull proves it hidden and leaves it out; the big wisp's outputs stay.
+      vector::ArrangementOptions o;
+      o.view = vector::image_rect(512, 512);
+      const auto culled = vector::build_arrangement({big, small}, o);
+      CHECK(culled.stats.hidden_wisps == 1);
+      CHECK(culled.visible == arr.visible);
     }
   }
 }

@@ -1,0 +1,225 @@
+// Depth seams (vector/depth_seams.hpp) and the depth they follow (vector/band_depth.hpp): the
+// band's depth is continuous across its cells; two wisps that swap depth order inside their overlap
+// get a seam there, and each side takes its own front; on random frames every point of every hair
+// face has the face's front as its nearest covering wisp, with the hidden-wisp cull on or off,
+// which without the seams does not hold.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "tests/vector/scenes.hpp"
+#include "vector/arrangement.hpp"
+#include "vector/band_depth.hpp"
+#include "vector/depth_seams.hpp"
+#include "vector/wisp.hpp"
+
+using namespace wisp;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+namespace {
+
+vector::Wisp wisp_of(const sim::ProjectedStrand& s, double width) {
+  vector::WispStyle style;
+  style.width = width;
+  style.profile = vector::WidthProfile::constant();
+  style.root_taper = 0;
+  auto w = vector::build_wisp(s, 800, style);
+  REQUIRE(w);
+  return *w;
+}
+
+vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps, bool seams, bool cull) {
+  vector::ArrangementOptions o;
+  o.view = vector::image_rect(512, 512);
+  o.keep_faces = true;
+  o.depth_seams = seams;
+  o.cull_hidden = cull;
+  return vector::build_arrangement(wisps, o);
+}
+
+// Distance from p to the nearest edge of the rings, and whether p is inside (even-odd).
+std::pair<bool, double> locate(const std::vector<const std::vector<Vector2d>*>& rings,
+                               const Vector2d& p) {
+  bool in = false;
+  double margin = INFINITY;
+  for (const auto* ring : rings)
+    for (size_t i = 0, j = ring->size() - 1; i < ring->size(); j = i++) {
+      const Vector2d &a = (*ring)[j], &b = (*ring)[i];
+      if ((a.y() > p.y()) != (b.y() > p.y()) &&
+          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+        in = !in;
+      const Vector2d ab = b - a;
+      const double l = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      margin = std::min(margin, (a + l * ab - p).norm());
+    }
+  return {in, margin};
+}
+
+// `count` wavy strands crowded into the middle of a 512 px frame at nearly the same depth, each
+// dipping back and forth along its length: many overlapping pairs swap depth order.
+std::vector<vector::Wisp> tangle(int count, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const auto uni = [&](double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+  };
+  std::vector<sim::ProjectedStrand> strands;
+  for (int i = 0; i < count; ++i) {
+    const Vector2d root(uni(150, 350), uni(150, 350));
+    const double angle = uni(0, 2 * M_PI), length = uni(80, 160), phase = uni(0, 2 * M_PI);
+    const double z0 = uni(2, 2.1), dip = uni(0.02, 0.1);
+    const Vector2d dir(std::cos(angle), std::sin(angle)), normal(-dir.y(), dir.x());
+    strands.push_back(test::strand_from(i, 24, [=](double u) {
+      const Vector2d p = root + length * u * dir + 6 * std::sin(8 * u + phase) * normal;
+      return Vector3d(p.x(), p.y(), z0 + dip * std::sin(5 * u + phase));
+    }));
+  }
+  vector::WispStyle style;
+  style.width = 0.04;
+  return vector::build_wisps(test::frame_of(strands), style);
+}
+
+struct FrontCheck {
+  long points = 0, wrong = 0, faces = 0, wrong_faces = 0;
+};
+
+// Random points in every hair face whose front is a wisp, each more than 1e-3 px inside: the
+// nearest of the face's covering wisps there (band_depth) against the face's front. Points where
+// two of them are within 1e-9 of each other in depth are ties either way and not counted.
+FrontCheck check_fronts(const std::vector<vector::Wisp>& wisps, const vector::ArrangementView& v) {
+  FrontCheck c;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const vector::ViewFace& f : v.faces) {
+    if (f.front < 0 || f.outer.empty()) continue;
+    std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
+    Eigen::AlignedBox2d box;
+    for (const Vector2d& p : f.outer) box.extend(p);
+    for (const auto& h : f.holes) rings.push_back(&h);
+    ++c.faces;
+    bool wrong = false;
+    for (int k = 0; k < 12; ++k) {
+      const Vector2d p = box.min() + Vector2d(unit(rng), unit(rng)).cwiseProduct(box.sizes());
+      const auto [in, margin] = locate(rings, p);
+      if (!in || margin < 1e-3) continue;
+      double best = INFINITY, second = INFINITY;
+      int nearest = -1;
+      for (const auto& [w, winding] : f.cover) {
+        const double z = vector::band_depth(wisps[w], p).depth;
+        if (z < best)
+          second = best, best = z, nearest = w;
+        else
+          second = std::min(second, z);
+      }
+      if (second - best < 1e-9 * best) continue;
+      ++c.points;
+      if (nearest != f.front) ++c.wrong, wrong = true;
+    }
+    c.wrong_faces += wrong;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("a band's depth is continuous across its cells", "[vector][seams]") {
+  // A wavy strand receding from depth 2 to 4: across every section line between two cells, the
+  // depth just before and just after it agree.
+  const auto w = wisp_of(
+      test::strand_from(
+          0, 40,
+          [](double u) { return Vector3d(60 + 300 * u, 200 + 30 * std::sin(6 * u), 2 + 2 * u); }),
+      0.06);
+  REQUIRE(w.sections.size() > 10);
+  double worst = 0;
+  for (size_t i = 1; i + 1 < w.sections.size(); ++i) {
+    const vector::Section& s = w.sections[i];
+    const Vector2d along = (w.sections[i + 1].centre - w.sections[i - 1].centre).normalized();
+    for (double f : {0.2, 0.5, 0.8}) {
+      const Vector2d p = s.left + f * (s.right - s.left);
+      const double before = vector::band_depth(w, p - 1e-7 * along).depth;
+      const double after = vector::band_depth(w, p + 1e-7 * along).depth;
+      worst = std::max(worst, std::abs(after - before));
+      CHECK(before == Approx(s.depth).epsilon(1e-6));
+    }
+  }
+  CHECK(worst < 1e-6);
+}
+
+TEST_CASE("two wisps swapping depth inside their overlap are split by a seam", "[vector][seams]") {
+  // Two 12 px bands along the same line, 4 px apart: A recedes from depth 2 to 4, B comes nearer
+  // from 4 to 2. Their outlines never cross, so without seams the overlap is one face with one
+  // front; in fact A is in front on the left half and B on the right.
+  const auto a = wisp_of(test::straight(0, {60, 200}, {360, 200}, 2, 4, 8), 0.03);
+  const auto b = wisp_of(test::straight(1, {60, 204}, {360, 204}, 4, 2, 8), 0.03);
+  const Vector2d left(120, 202), right(300, 202);
+
+  const auto with = arrange({a, b}, true, false);
+  CHECK(with.stats.seam_segments > 0);
+  const auto front_at = [](const vector::WispArrangement& arr, const Vector2d& p) {
+    for (const vector::ViewFace& f : arr.view.faces) {
+      if (f.outer.empty()) continue;
+      std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
+      for (const auto& h : f.holes) rings.push_back(&h);
+      if (locate(rings, p).first) return f.front;
+    }
+    return -2;
+  };
+  CHECK(front_at(with, left) == 0);
+  CHECK(front_at(with, right) == 1);
+  // The seam is no outline: it splits faces without drawing an ink line along itself.
+  for (const vector::InkLine& line : with.occlusion)
+    for (const Vector2d& p : line.points) CHECK(std::abs(p.y() - 202) > 1.5);
+
+  const auto without = arrange({a, b}, false, false);
+  CHECK(without.stats.seam_segments == 0);
+  CHECK(front_at(without, left) == front_at(without, right));
+}
+
+TEST_CASE("every point of a hair face has the face's front", "[vector][seams]") {
+  for (std::uint32_t seed : {3u, 11u}) {
+    const auto wisps = tangle(40, seed);
+    INFO("seed " << seed);
+    for (bool cull : {false, true}) {
+      INFO("cull " << cull);
+      const auto arr = arrange(wisps, true, cull);
+      const FrontCheck c = check_fronts(wisps, arr.view);
+      CHECK(c.points > 1000);
+      CHECK(c.wrong == 0);
+    }
+    // Without the seams the one sample per face is wrong somewhere: the scene tests the seams.
+    const FrontCheck off = check_fronts(wisps, arrange(wisps, false, false).view);
+    CHECK(off.wrong_faces > 0);
+  }
+}
+
+TEST_CASE("depth seams are deterministic and skip hidden cells", "[vector][seams]") {
+  const auto wisps = tangle(30, 5);
+  const std::vector<char> used(wisps.size(), 1);
+  const auto view = vector::image_rect(512, 512);
+  const auto first = vector::depth_seams(wisps, used, {}, -2, view);
+  const auto again = vector::depth_seams(wisps, used, {}, -2, view);
+  REQUIRE(first.size() == again.size());
+  REQUIRE(!first.empty());
+  for (size_t i = 0; i < first.size(); ++i) {
+    CHECK(first[i].a == again[i].a);
+    CHECK(first[i].b == again[i].b);
+    CHECK(first[i].wisp == -2);
+  }
+  // Every cell hidden: no seam. Every cell of one wisp hidden: fewer seams.
+  std::vector<std::vector<char>> hidden(wisps.size());
+  for (size_t w = 0; w < wisps.size(); ++w) hidden[w].assign(wisps[w].sections.size() - 1, 1);
+  CHECK(vector::depth_seams(wisps, used, hidden, -2, view).empty());
+  size_t busiest = 0, most = 0;
+  for (size_t w = 0; w < wisps.size(); ++w) {
+    // Seams of wisp w: all seams minus those without it.
+    std::vector<char> others(wisps.size(), 1);
+    others[w] = 0;
+    const size_t with_w = first.size() - vector::depth_seams(wisps, others, {}, -2, view).size();
+    if (with_w > most) most = with_w, busiest = w;
+  }
+  REQUIRE(most > 0);
+  std::vector<std::vector<char>> one(wisps.size());
+  one[busiest].assign(wisps[busiest].sections.size() - 1, 1);
+  CHECK(vector::depth_seams(wisps, used, one, -2, view).size() == first.size() - most);
+}

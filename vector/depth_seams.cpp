@@ -1,0 +1,178 @@
+// Depth seams between overlapping wisps (vector/depth_seams.hpp).
+//
+// A wisp's depth is affine over each triangle of its band (vector/band_depth.hpp), so over a pair
+// of triangles of two wisps the points of equal depth are the zero line of an affine map, and the
+// seam piece is that line clipped to both triangles (both convex). A piece ends on an edge of one
+// of the triangles. There the depth of that triangle's wisp is the linear interpolation of the
+// edge's two corner depths, which the neighbouring triangle across the edge shares; the point is
+// computed from the edge's corners in a fixed order and the other wisp's affine map, so the piece
+// of the neighbouring pair that continues the seam starts at the same point, bit for bit, and the
+// seam has no gap (a gap would leave the face it runs through whole). Where a piece ends on a
+// side of a band, which is an outline segment of the arrangement's input, it is lengthened by
+// kOvershoot to cross that segment rather than stop a rounding error short of it.
+#include "vector/depth_seams.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "vector/band_depth.hpp"
+#include "vector/buckets.hpp"
+
+namespace wisp::vector {
+
+using Eigen::Vector2d;
+
+namespace {
+
+constexpr double kOvershoot = 1e-4;  // px; the arrangement snaps to 2^-17 px at 1024 px
+
+// A triangle of a wisp's band, with which of its edges (v[k] -> v[k + 1]) lie on the outline.
+struct Triangle {
+  CellTriangle t;
+  int wisp = 0;
+  std::array<bool, 3> outline{};
+  Eigen::AlignedBox2d box;
+  double lo = 0, hi = 0;  // its depth range
+};
+
+// The outline edges of a cell's triangles: the band's sides, and the first and last sections
+// (root and tip caps). Corners are compared exactly: they are copies of the sections' points.
+void mark_outline(Triangle& tri, const Wisp& w, int cell) {
+  const Section &a = w.sections[cell], &b = w.sections[cell + 1];
+  const bool first = cell == 0, last = cell + 2 == int(w.sections.size());
+  const auto is = [](const Vector2d& p, const Vector2d& q, const Vector2d& u, const Vector2d& v) {
+    return (p == u && q == v) || (p == v && q == u);
+  };
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d &p = tri.t.v[k], &q = tri.t.v[(k + 1) % 3];
+    tri.outline[k] = is(p, q, a.left, b.left) || is(p, q, a.right, b.right) ||
+                     (first && is(p, q, a.left, a.right)) || (last && is(p, q, b.left, b.right));
+  }
+}
+
+// Where the line f = 0 crosses edge (u, v), with f's values at the corners computed by `f_at`:
+// the corners in lexicographic order, so that both triangles sharing the edge get the same point.
+template <class F>
+Vector2d crossing(const Vector2d& u, const Vector2d& v, const F& f_at) {
+  const bool swap = v.x() < u.x() || (v.x() == u.x() && v.y() < u.y());
+  const Vector2d &p = swap ? v : u, &q = swap ? u : v;
+  const double fp = f_at(p, swap ? 1 : 0), fq = f_at(q, swap ? 0 : 1);
+  return p + (q - p) * (fp / (fp - fq));
+}
+
+struct End {
+  Vector2d p;
+  double along = 0;  // position along the seam line
+  bool outline = false;
+};
+
+// The two points where the zero line of (depth of `mine` - depth of `other`) crosses the edges of
+// `mine`, or false. On mine's edges its depth is the corners' interpolation, not its affine map.
+bool clip(const Triangle& mine, const Triangle& other, bool mine_first, const Vector2d& dir,
+          std::array<End, 2>& out) {
+  const auto f = [&](int k) {
+    const double d = mine.t.z[k] - other.t.depth(mine.t.v[k]);
+    return mine_first ? d : -d;
+  };
+  const double fk[3] = {f(0), f(1), f(2)};
+  int n = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    if ((fk[k] > 0) == (fk[l] > 0)) continue;
+    if (n == 2) return false;  // rounding: a corner on the line counted twice
+    const Vector2d p = crossing(mine.t.v[k], mine.t.v[l], [&](const Vector2d&, int which) {
+      return which == 0 ? fk[k] : fk[l];
+    });
+    out[n++] = {p, p.dot(dir), mine.outline[k]};
+  }
+  if (n != 2) return false;
+  if (out[1].along < out[0].along) std::swap(out[0], out[1]);
+  return true;
+}
+
+// The seam piece of triangles a and b (a of the lower wisp), if any.
+void seam_piece(const Triangle& a, const Triangle& b, int seam_id,
+                std::vector<OutlineSegment>& out) {
+  const Vector2d g = a.t.grad - b.t.grad;
+  // Parallel planes: equal everywhere (duplicates, left to the index rule) or nowhere.
+  if (!(g.squaredNorm() > 0)) return;
+  const Vector2d dir = Vector2d(-g.y(), g.x()).normalized();
+  std::array<End, 2> ea, eb;
+  if (!clip(a, b, true, dir, ea) || !clip(b, a, false, dir, eb)) return;
+  const End& e0 = ea[0].along >= eb[0].along ? ea[0] : eb[0];
+  const End& e1 = ea[1].along <= eb[1].along ? ea[1] : eb[1];
+  if (!(e1.along > e0.along)) return;
+  const Vector2d p0 = e0.outline ? Vector2d(e0.p - kOvershoot * dir) : e0.p;
+  const Vector2d p1 = e1.outline ? Vector2d(e1.p + kOvershoot * dir) : e1.p;
+  out.push_back({p0, p1, seam_id});
+}
+
+}  // namespace
+
+std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
+                                        const std::vector<char>& used,
+                                        const std::vector<std::vector<char>>& hidden, int seam_id,
+                                        const Eigen::AlignedBox2d& view) {
+  std::vector<Triangle> tris;
+  Eigen::AlignedBox2d all;
+  for (int w = 0; w < int(wisps.size()); ++w) {
+    if (!used[w]) continue;
+    for (int i = 0; i + 1 < int(wisps[w].sections.size()); ++i) {
+      if (w < int(hidden.size()) && i < int(hidden[w].size()) && hidden[w][i]) continue;
+      std::array<CellTriangle, 2> cell;
+      if (!cell_triangles(wisps[w], i, cell)) continue;
+      for (const CellTriangle& t : cell) {
+        Triangle tri;
+        tri.t = t, tri.wisp = w;
+        tri.box = Eigen::AlignedBox2d(t.v[0]);
+        tri.box.extend(t.v[1]), tri.box.extend(t.v[2]);
+        if (!view.isEmpty() && !view.intersects(tri.box)) continue;
+        if (tri.box.sizes().prod() == 0) continue;  // no area
+        tri.lo = std::min({t.z[0], t.z[1], t.z[2]}), tri.hi = std::max({t.z[0], t.z[1], t.z[2]});
+        mark_outline(tri, wisps[w], i);
+        all.extend(tri.box);
+        tris.push_back(tri);
+      }
+    }
+  }
+  std::vector<OutlineSegment> seams;
+  if (tris.empty()) return seams;
+
+  // A uniform grid of squares about the size of a triangle; each pair is tested in the square of
+  // its boxes' common corner. Within a square the triangles are sorted by their least depth, so
+  // that each meets only those whose depth ranges overlap its own.
+  double extent = 0;
+  for (const Triangle& t : tris) extent += t.box.sizes().maxCoeff();
+  const Vector2d size = all.sizes().cwiseMax(1e-9);
+  const double side = std::max({extent / double(tris.size()), size.maxCoeff() / 4096, 1e-6});
+  const int nx = std::clamp(int(size.x() / side) + 1, 1, 4096);
+  const int ny = std::clamp(int(size.y() / side) + 1, 1, 4096);
+  const auto col = [&](double x) { return std::clamp(int((x - all.min().x()) / side), 0, nx - 1); };
+  const auto row = [&](double y) { return std::clamp(int((y - all.min().y()) / side), 0, ny - 1); };
+  const Buckets<int> grid = bucket<int>(nx * ny, [&](const auto& put) {
+    for (int i = 0; i < int(tris.size()); ++i)
+      for (int y = row(tris[i].box.min().y()); y <= row(tris[i].box.max().y()); ++y)
+        for (int x = col(tris[i].box.min().x()); x <= col(tris[i].box.max().x()); ++x)
+          put(y * nx + x, i);
+  });
+  std::vector<int> order;
+  for (int k = 0; k < nx * ny; ++k) {
+    order.assign(grid.items.begin() + grid.begin[k], grid.items.begin() + grid.begin[k + 1]);
+    std::sort(order.begin(), order.end(), [&](int i, int j) {
+      return tris[i].lo != tris[j].lo ? tris[i].lo < tris[j].lo : i < j;
+    });
+    for (size_t u = 0; u < order.size(); ++u)
+      for (size_t v = u + 1; v < order.size() && tris[order[v]].lo <= tris[order[u]].hi; ++v) {
+        const int i = std::min(order[u], order[v]), j = std::max(order[u], order[v]);
+        const Triangle &a = tris[i], &b = tris[j];  // in index order: a's wisp first
+        if (a.wisp == b.wisp) continue;
+        const Eigen::AlignedBox2d both = a.box.intersection(b.box);
+        if (both.isEmpty() || row(both.min().y()) * nx + col(both.min().x()) != k) continue;
+        seam_piece(a, b, seam_id, seams);
+      }
+  }
+  return seams;
+}
+
+}  // namespace wisp::vector

@@ -1,0 +1,27 @@
+// Depth seams: the lines inside the hair where two overlapping wisps swap depth order. A wisp's
+// depth is affine over each triangle of its band (vector/band_depth.hpp), so where triangles of two
+// wisps overlap and their depth ranges meet, the points of equal depth are one line, clipped to
+// both triangles; the pieces join up across the triangles' edges. Added to the arrangement's
+// input, these segments split every face along which its covering wisps change order, so the one
+// depth sample per face that the resolver takes decides the whole face, however the outlines
+// around it happen to subdivide the hair (docs/vector.md section 7).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "vector/planar_map.hpp"
+#include "vector/wisp.hpp"
+
+namespace wisp::vector {
+
+// The seams between the wisps with `used[w]` set, as segments with wisp id `seam_id`. Left out:
+// triangles wholly outside `view` (an empty box: none), and the cells with hidden[w][i] set
+// (an empty vector: none; vector/hidden_wisps.hpp). Pairs of triangles are found on a uniform
+// grid; the output's order depends only on the input.
+std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
+                                        const std::vector<char>& used,
+                                        const std::vector<std::vector<char>>& hidden, int seam_id,
+                                        const Eigen::AlignedBox2d& view);
+
+}  // namespace wisp::vector
