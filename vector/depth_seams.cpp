@@ -51,14 +51,11 @@ void mark_outline(Triangle& tri, const Wisp& w, int cell) {
   }
 }
 
-// Where the line f = 0 crosses edge (u, v), with f's values at the corners computed by `f_at`:
-// the corners in lexicographic order, so that both triangles sharing the edge get the same point.
-template <class F>
-Vector2d crossing(const Vector2d& u, const Vector2d& v, const F& f_at) {
-  const bool swap = v.x() < u.x() || (v.x() == u.x() && v.y() < u.y());
-  const Vector2d &p = swap ? v : u, &q = swap ? u : v;
-  const double fp = f_at(p, swap ? 1 : 0), fq = f_at(q, swap ? 0 : 1);
-  return p + (q - p) * (fp / (fp - fq));
+// Where the line f = 0 crosses edge (u, v), f being fu at u and fv at v: computed from the corners
+// in lexicographic order, so that both triangles sharing the edge get the same point.
+Vector2d crossing(Vector2d u, Vector2d v, double fu, double fv) {
+  if (v.x() < u.x() || (v.x() == u.x() && v.y() < u.y())) std::swap(u, v), std::swap(fu, fv);
+  return u + (v - u) * (fu / (fu - fv));
 }
 
 struct End {
@@ -76,14 +73,11 @@ bool clip(const Triangle& mine, const Triangle& other, bool mine_first, const Ve
     return mine_first ? d : -d;
   };
   const double fk[3] = {f(0), f(1), f(2)};
-  int n = 0;
+  int n = 0;  // the sign changes around a triangle: none or two
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     if ((fk[k] > 0) == (fk[l] > 0)) continue;
-    if (n == 2) return false;  // rounding: a corner on the line counted twice
-    const Vector2d p = crossing(mine.t.v[k], mine.t.v[l], [&](const Vector2d&, int which) {
-      return which == 0 ? fk[k] : fk[l];
-    });
+    const Vector2d p = crossing(mine.t.v[k], mine.t.v[l], fk[k], fk[l]);
     out[n++] = {p, p.dot(dir), mine.outline[k]};
   }
   if (n != 2) return false;
@@ -128,7 +122,8 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
         tri.box = Eigen::AlignedBox2d(t.v[0]);
         tri.box.extend(t.v[1]), tri.box.extend(t.v[2]);
         if (!view.isEmpty() && !view.intersects(tri.box)) continue;
-        if (tri.box.sizes().prod() == 0) continue;  // no area
+        const Vector2d e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+        if (e1.x() * e2.y() - e1.y() * e2.x() == 0) continue;  // no area
         tri.lo = std::min({t.z[0], t.z[1], t.z[2]}), tri.hi = std::max({t.z[0], t.z[1], t.z[2]});
         mark_outline(tri, wisps[w], i);
         all.extend(tri.box);
