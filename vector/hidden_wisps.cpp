@@ -291,10 +291,11 @@ HiddenParts hidden_wisps(const std::vector<Wisp>& wisps,
 
   // Cells: every square the cell's box meets. A cell's depth is at least its sections' least.
   for (int d = 0; d < n; ++d) {
-    if (mine[d].empty() || hidden[d]) continue;
+    if (mine[d].empty()) continue;
     const std::vector<Section>& sec = wisps[d].sections;
     std::vector<char>& cells = out.cells[d];
-    cells.assign(sec.size() - 1, 0);
+    cells.assign(sec.size() - 1, hidden[d]);  // a hidden wisp's cells are all hidden
+    if (hidden[d]) continue;
     for (size_t k = 0; k + 1 < sec.size(); ++k) {
       const Section &a = sec[k], &b = sec[k + 1];
       Eigen::AlignedBox2d cell(a.left);

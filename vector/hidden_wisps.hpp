@@ -24,9 +24,10 @@ struct HiddenWispOptions {
 
 struct HiddenParts {
   std::vector<char> wisps;  // per wisp, 1 where it can be left out of the sweep
-  // Per wisp that is not left out, per cell (sections i and i + 1): 1 where something covering
-  // every square the cell's box meets is nearer than all of the cell. No face's front can then be
-  // the wisp inside the cell, so no depth seam of it can matter (vector/depth_seams.hpp).
+  // Per wisp with segments, per cell (sections i and i + 1): 1 where something covering every
+  // square the cell's box meets is nearer than all of the cell (every cell of a hidden wisp). No
+  // face's front can then be the wisp inside the cell, so no depth seam of it can matter
+  // (vector/depth_seams.hpp).
   std::vector<std::vector<char>> cells;
 };
 
