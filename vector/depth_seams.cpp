@@ -140,9 +140,12 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
   double extent = 0;
   for (const Triangle& t : tris) extent += t.box.sizes().maxCoeff();
   const Vector2d size = all.sizes().cwiseMax(1e-9);
-  const double side = std::max({extent / double(tris.size()), size.maxCoeff() / 4096, 1e-6});
-  const int nx = std::clamp(int(size.x() / side) + 1, 1, 4096);
-  const int ny = std::clamp(int(size.y() / side) + 1, 1, 4096);
+  // Not many more squares than triangles, whatever the spread (a huge triangle reaching into the
+  // view, from a strand near the eye plane).
+  double side = std::max(extent / double(tris.size()), 1e-6);
+  while ((size.x() / side + 1) * (size.y() / side + 1) > 4.0 * double(tris.size()) + 1024)
+    side *= 2;
+  const int nx = int(size.x() / side) + 1, ny = int(size.y() / side) + 1;
   const auto col = [&](double x) { return std::clamp(int((x - all.min().x()) / side), 0, nx - 1); };
   const auto row = [&](double y) { return std::clamp(int((y - all.min().y()) / side), 0, ny - 1); };
   const Buckets<int> grid = bucket<int>(nx * ny, [&](const auto& put) {

@@ -223,3 +223,20 @@ TEST_CASE("depth seams are deterministic and skip hidden cells", "[vector][seams
   one[busiest].assign(wisps[busiest].sections.size() - 1, 1);
   CHECK(vector::depth_seams(wisps, used, one, -2, view).size() == first.size() - most);
 }
+
+TEST_CASE("seams of bands reaching far beyond the view stay few and in place", "[vector][seams]") {
+  // Two bands 100 000 px long, crossing the 512 px view, swapping depth in its middle: the grid
+  // of the pair search is sized by the triangles, not by their spread.
+  const auto a = wisp_of(test::straight(0, {-50000, 250}, {50000, 250}, 2, 4, 64), 0.03);
+  const auto b = wisp_of(test::straight(1, {-50000, 253}, {50000, 253}, 4, 2, 64), 0.03);
+  const std::vector<char> used = {1, 1};
+  const auto seams = vector::depth_seams({a, b}, used, {}, -2, vector::image_rect(512, 512));
+  REQUIRE(!seams.empty());
+  for (const vector::OutlineSegment& s : seams) {
+    // The bands' depths meet at x = 0 on the centre line; across the overlap the seam stays near.
+    CHECK(std::abs(s.a.x()) < 600);
+    CHECK(std::abs(s.b.x()) < 600);
+  }
+  const auto arr = arrange({a, b}, true, true);
+  CHECK(arr.stats.seam_segments > 0);
+}
