@@ -27,7 +27,7 @@ const std::array<LayerInfo, kLayerCount> kLayers{{
     {Layer::Constraints, "constraints", 'p', true, "constraint pixels of the solve"},
     {Layer::Residual, "residual", 'r', true, "solver residual, log scale ([ ] step)"},
     {Layer::Outlines, "outlines", 'o', false, "wisp outlines by wisp id"},
-    {Layer::Visibility, "visibility", 'v', false, "visible (green) / hidden (red) pieces"},
+    {Layer::Visibility, "visibility", 'v', false, "visible (green) / hidden (red) pieces, seams"},
     {Layer::Curves, "curves", 'b', false, "centre curves and control points"},
     {Layer::Vertices, "vertices", 'x', false, "intersection vertices"},
     {Layer::Ink, "ink", 'k', false, "ink strokes (silhouette, occlusion)"},
@@ -239,20 +239,33 @@ void draw_outlines(const Pen& pen, const InspectFrame& f) {
 
 void draw_visibility(const Pen& pen, const InspectFrame& f) {
   const auto& edges = f.result.arrangement.view.edges;
-  for (int pass = 0; pass < 2; ++pass) {  // hidden first, visible on top
+  const auto draw_if = [&](const auto& wanted) {
     cairo_new_path(pen.cr);
-    for (const vector::ViewEdge& e : edges) {
-      bool outline = false, visible = false;
-      for (const vector::ViewEdgeSource& s : e.sources) {
-        outline |= s.wisp >= 0;
-        visible |= s.wisp >= 0 && s.visible;
+    for (const vector::ViewEdge& e : edges)
+      if (wanted(e)) {
+        pen.move(e.a);
+        pen.line(e.b);
       }
-      if (!outline || visible != (pass == 1)) continue;
-      pen.move(e.a);
-      pen.line(e.b);
+  };
+  const auto outline = [](const vector::ViewEdge& e, bool visible) {
+    bool any = false, shown = false;
+    for (const vector::ViewEdgeSource& s : e.sources) {
+      any |= s.wisp >= 0;
+      shown |= s.wisp >= 0 && s.visible;
     }
-    pass == 0 ? pen.stroke(kHiddenColor, 1.0) : pen.stroke(kVisibleColor, 1.5);
-  }
+    return any && shown == visible;
+  };
+  // Hidden pieces, then the depth seams (vector/depth_seams.hpp: edges along no outline, where
+  // two wisps swap depth order), then the visible pieces on top.
+  draw_if([&](const vector::ViewEdge& e) { return outline(e, false); });
+  pen.stroke(kHiddenColor, 1.0);
+  draw_if([](const vector::ViewEdge& e) {
+    return std::all_of(e.sources.begin(), e.sources.end(),
+                       [](const vector::ViewEdgeSource& s) { return s.seam; });
+  });
+  pen.stroke(kSeamColor, 1.0);
+  draw_if([&](const vector::ViewEdge& e) { return outline(e, true); });
+  pen.stroke(kVisibleColor, 1.5);
 }
 
 void draw_curves(const Pen& pen, const InspectFrame& f) {

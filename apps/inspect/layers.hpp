@@ -34,7 +34,7 @@ enum class Layer : int {
   Constraints,  // fixed and anchored pixels in their values (cut links too when zoomed in)
   Residual,     // |b - A u| after a solver step, log scale
   Outlines,     // wisp outlines coloured by wisp id
-  Visibility,   // visible (green) and hidden (red) outline pieces
+  Visibility,   // visible (green) and hidden (red) outline pieces, depth seams (violet)
   Curves,       // centre curves with their Bezier control points
   Vertices,     // intersection vertices of the arrangement
   Ink,          // ink strokes (the silhouette and occlusion lines when the style has none)
@@ -89,6 +89,7 @@ constexpr Rgb8 kBackground{40, 40, 40};
 constexpr double kStackedOpacity = 0.6;
 constexpr Rgb8 kVisibleColor{70, 230, 90};
 constexpr Rgb8 kHiddenColor{235, 50, 50};
+constexpr Rgb8 kSeamColor{190, 90, 255};  // depth seams: where two wisps swap depth order
 constexpr Rgb8 kCurveColor{235, 235, 235};
 constexpr Rgb8 kControlPolygonColor{130, 130, 130};
 constexpr Rgb8 kHandleColor{60, 200, 255};

@@ -362,6 +362,22 @@ TEST_CASE("line layers draw what they name", "[cli][inspect]") {
     for (int x = 0; x < kSize; ++x)
       hidden += colour_near(visibility, {x + 0.5, y + 0.5}, kHiddenColor, 0, 30);
   CHECK(hidden > 50);
+  // Depth seams: edges with only seam sources, in their own colour. Those of 1 px and more (70 %
+  // show it at their middle: a seam ends at outlines, and visible pieces are drawn over it).
+  int seam_ok = 0, seam_total = 0;
+  for (const json& e : d["edges"]) {
+    bool seam = !e["sources"].empty();
+    for (const json& s : e["sources"]) seam &= s["side"].get<std::string>() == "seam";
+    const cv::Point2d a(e["a"][0].get<double>(), e["a"][1].get<double>()),
+        b(e["b"][0].get<double>(), e["b"][1].get<double>()), mid = (a + b) / 2;
+    if (!seam || cv::norm(b - a) < 1 || mid.x < 1 || mid.y < 1 || mid.x > kSize - 1 ||
+        mid.y > kSize - 1)
+      continue;
+    ++seam_total;
+    seam_ok += colour_near(visibility, mid, wisp::inspect::kSeamColor, 1, 60);
+  }
+  REQUIRE(seam_total > 10);
+  CHECK(seam_ok >= 0.6 * seam_total);
 
   // Outlines, centre curves and ink draw something, and different things.
   const cv::Mat outlines = snapshot("outlines"), curves = snapshot("curves"), ink = snapshot("ink");
