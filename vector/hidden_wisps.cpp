@@ -8,13 +8,20 @@
 // inner curves and hatching are clipped to. No reader asks for the second wisp of a face: the
 // colour beyond a visible outline is the shadow colour or a highlight of a visible wisp. So a wisp
 // that is front-most on no face has no visible interval, no front region and is no face's front.
-// Taking its outline out merges faces whose covers differ only in d. Two things can then move:
-//  - the resolver decides a face's front at one sample point; where two other wisps swap depth
-//    order inside a merged face, its one sample may pick the other one than the pieces' samples
-//    did, so a visible interval's end or an occlusion line can shift inside that face;
+// Taking its outline out merges faces whose covers differ only in d. What can then move:
+//  - the resolver decides a face's front at one sample point. Between wisps that decides the
+//    whole face, since the depth seams split faces where two wisps swap order (depth_seams.hpp);
+//    but where a wisp and an occluder swap inside a merged face, or in the curl rule's one test
+//    per edge, the sample may pick otherwise than the pieces' samples did;
 //  - the vertices d's outline put on other outlines go: the same polylines and mask polygons
 //    with points that lay on them to rounding left out.
-// Neither is more right with d than without; docs/performance.md measures both.
+// Neither is more right with d than without; docs/vector.md 5b measures both.
+//
+// Hidden cells. A cell of a kept wisp whose least depth is beyond front[c] (below) for every
+// square c its box meets lies, at each of its points, behind whatever covers that square; a
+// depth seam of it has both wisps' depths there, so it lies behind too and can change no face's
+// front. Where such a seam is left out, the seam of the cells around it ends inside that cover,
+// whose outline it has crossed: the faces outside the cover are still split.
 //
 // The grid test. The plane is cut into squares of `square_px`; every test below uses each square
 // grown by kEps, far above the rounding of any double computed here, so a decision about the
