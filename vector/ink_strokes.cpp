@@ -100,46 +100,41 @@ std::vector<InkCurve> ink_curves(const std::vector<Wisp>& wisps, const WispArran
   const auto add = [&](const InkLine& line, bool silhouette) {
     const double base = (silhouette ? style.silhouette_width : style.occlusion_width) * scale;
     if (!(base > 0) || line.points.size() < 2) return;
-    const int n = int(line.points.size());
-    std::vector<double> w(n, base);
+    // Points where the taper starts must be knots of the fit, or a long cubic would spread the
+    // taper over its whole length: densify so no two consecutive points are farther apart than a
+    // few stroke widths. The widths are taken at every point, so that they do not depend on where
+    // the arrangement happened to put the line's vertices.
+    std::vector<Vector2d> pts;
+    const double max_gap = std::max(1.0, 2 * base);
+    for (size_t i = 0; i < line.points.size(); ++i) {
+      if (i > 0) {
+        const Vector2d a = line.points[i - 1], b = line.points[i];
+        const int k = int(std::ceil((b - a).norm() / max_gap));
+        for (int j = 1; j < k; ++j) pts.push_back(a + (b - a) * (double(j) / k));
+      }
+      pts.push_back(line.points[i]);
+    }
+    const int n = int(pts.size());
+    std::vector<double> pw(n, base);
     if (line.wisp >= 0 && line.wisp < int(wisps.size()) &&
         (style.root_fade > 0 || style.tip_fade > 0)) {
       auto it = polygons.find(line.wisp);
       if (it == polygons.end())
         it = polygons.emplace(line.wisp, outline_polygon(wisps[line.wisp])).first;
       for (int i = 0; i < n; ++i)
-        w[i] *= root_factor(
-            style, centre_to_strand(wisps[line.wisp], nearest_t(it->second, line.points[i])));
+        pw[i] *=
+            root_factor(style, centre_to_strand(wisps[line.wisp], nearest_t(it->second, pts[i])));
     }
     if (!silhouette && !line.closed && style.end_taper > 0) {
       // Arc length from each end.
       std::vector<double> from_start(n, 0.0);
-      for (int i = 1; i < n; ++i)
-        from_start[i] = from_start[i - 1] + (line.points[i] - line.points[i - 1]).norm();
+      for (int i = 1; i < n; ++i) from_start[i] = from_start[i - 1] + (pts[i] - pts[i - 1]).norm();
       const double total = from_start.back(), taper = style.end_taper * scale;
       for (int i = 0; i < n; ++i) {
         const double d = std::min(from_start[i], total - from_start[i]);
         const double f = std::clamp(d / taper, 0.0, 1.0);
-        w[i] *= f * f * (3 - 2 * f);
+        pw[i] *= f * f * (3 - 2 * f);
       }
-    }
-    // Points where the taper starts must be knots of the fit, or a long cubic would spread the
-    // taper over its whole length: densify so no two consecutive points are farther apart than a
-    // few stroke widths.
-    std::vector<Vector2d> pts;
-    std::vector<double> pw;
-    const double max_gap = std::max(1.0, 2 * base);
-    for (int i = 0; i < n; ++i) {
-      if (i > 0) {
-        const Vector2d a = line.points[i - 1], b = line.points[i];
-        const int k = int(std::ceil((b - a).norm() / max_gap));
-        for (int j = 1; j < k; ++j) {
-          pts.push_back(a + (b - a) * (double(j) / k));
-          pw.push_back(w[i - 1] + (w[i] - w[i - 1]) * (double(j) / k));
-        }
-      }
-      pts.push_back(line.points[i]);
-      pw.push_back(w[i]);
     }
     const FittedPath path = fit_cubics(pts, fit, line.closed);
     if (path.piece_count() == 0) return;
