@@ -58,6 +58,59 @@ void add_winding(Cover& c, size_t from, int wisp, int delta) {
   }
 }
 
+// Appends the outline of wisp w's band between sections first and last: the whole outline
+// from 0 to n, else a piece of it whose caps inside the band are cuts (OutlineSegment::cut).
+void append_outline(const Wisp& wisp, int w, int first, int last,
+                    std::vector<OutlineSegment>& out) {
+  const int n = int(wisp.sections.size()) - 1;
+  const std::vector<OutlineVertex> poly = outline_polygon(wisp, first, last);
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const OutlineVertex &a = poly[i], &b = poly[(i + 1) % poly.size()];
+    OutlineSegment seg{a.p, b.p, w, a.side, a.s, i + 1 < poly.size() ? b.s : 1.0, a.depth, b.depth};
+    seg.cut = (a.side == Side::Root && first > 0) || (a.side == Side::Tip && last < n);
+    if (seg.cut) seg.s1 = seg.s0;
+    out.push_back(seg);
+  }
+}
+
+// Replaces the outline of every kept wisp with hidden cells by the outlines of its runs of
+// visible cells: the hidden cells' sides no longer enter the sweep. Something nearer covers every
+// point of a hidden cell (vector/hidden_wisps.hpp), so leaving the cell out of its wisp's cover
+// changes no face's front, and a cut (the section line between a hidden and a kept cell) has the
+// same front on both sides: no visible piece, no ink. Returns the segments left out.
+int cut_hidden_cells(const std::vector<Wisp>& wisps, const HiddenParts& hidden,
+                     std::vector<OutlineSegment>& segments) {
+  const int n = int(wisps.size());
+  std::vector<char> cut(n, 0);
+  for (int w = 0; w < n; ++w)
+    cut[w] = !hidden.wisps[w] &&
+             std::find(hidden.cells[w].begin(), hidden.cells[w].end(), 1) != hidden.cells[w].end();
+  const size_t before = segments.size();
+  segments.erase(std::remove_if(segments.begin(), segments.end(),
+                                [&](const OutlineSegment& s) {
+                                  return s.wisp >= 0 && s.wisp < n && cut[s.wisp];
+                                }),
+                 segments.end());
+  const int removed = int(before - segments.size());
+  int added = 0;
+  for (int w = 0; w < n; ++w) {
+    if (!cut[w]) continue;
+    const std::vector<char>& cells = hidden.cells[w];
+    for (int k = 0; k < int(cells.size());) {
+      if (cells[k]) {
+        ++k;
+        continue;
+      }
+      const int first = k;
+      while (k < int(cells.size()) && !cells[k]) ++k;
+      const size_t at = segments.size();
+      append_outline(wisps[w], w, first, k, segments);
+      added += int(segments.size() - at);
+    }
+  }
+  return removed - added;
+}
+
 void check_wisp(const Wisp& w, int index) {
   const std::string name = "wisp " + std::to_string(index);
   if (w.sections.size() < 2) throw std::invalid_argument(name + ": needs at least 2 sections");
@@ -477,6 +530,7 @@ struct Resolver {
         s.visible = visible[i] != 0;
         s.base = base;
         s.seam = seam;
+        s.cut = seg.cut;
         if (is_wisp(seg.wisp) || base) s.s0 = s_at(seg, ve.a), s.s1 = s_at(seg, ve.b);
         ve.sources.push_back(s);
       }
@@ -517,12 +571,7 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (options.clip_to_view && !options.view.intersects(wisps[w].bounds)) continue;
     ++out.stats.wisps;
-    const std::vector<OutlineVertex> poly = outline_polygon(wisps[w]);
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const OutlineVertex &a = poly[i], &b = poly[(i + 1) % poly.size()];
-      segments.push_back(
-          {a.p, b.p, w, a.side, a.s, i + 1 < poly.size() ? b.s : 1.0, a.depth, b.depth});
-    }
+    append_outline(wisps[w], w, 0, int(wisps[w].sections.size()) - 1, segments);
   }
   for (size_t k = 0; k < options.occluders.size(); ++k) {
     const Occluder& o = options.occluders[k];
@@ -579,6 +628,10 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
       });
       out.stats.hidden_segments = int(segments.end() - kept_end);
       segments.erase(kept_end, segments.end());
+      if (options.cut_hidden) {
+        out.stats.hidden_segments += cut_hidden_cells(wisps, hidden, segments);
+        for (const OutlineSegment& s : segments) out.stats.cuts += s.cut;
+      }
       for (char h : hidden.wisps) out.stats.hidden_wisps += h;
       out.stats.wisps -= out.stats.hidden_wisps;
     }
@@ -594,6 +647,13 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
                     options.clip_to_view ? options.view : Eigen::AlignedBox2d());
     out.stats.seam_segments = int(seams.size());
     segments.insert(segments.end(), seams.begin(), seams.end());
+    if (options.occluder_seams) {
+      const std::vector<OutlineSegment> behind =
+          occluder_seams(wisps, used, hidden.cells, options.occluders, kSeamId,
+                         options.clip_to_view ? options.view : Eigen::AlignedBox2d());
+      out.stats.seam_segments += int(behind.size());
+      segments.insert(segments.end(), behind.begin(), behind.end());
+    }
     out.stats.seams_ms = ms_since(ts);
   }
   const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);

@@ -5,8 +5,8 @@
 //    unbounded face across edges (crossing an outline changes its wisp's winding by one);
 //  - depth order: the front-most covering wisp of a face is the one nearest the eye at one
 //    interior sample point of the face (depth inside a wisp is that of its centre cross-section);
-//    the faces are split where two covering wisps swap depth order (vector/depth_seams.hpp), so
-//    that sample decides every point of the face;
+//    the faces are split where two covering wisps swap depth order, or a wisp and an occluder
+//    (vector/depth_seams.hpp), so that sample decides every point of the face;
 //  - visibility: an outline piece is visible where its wisp is front-most on either side of it
 //    (and no other pass of the same wisp lies in front of it, for curls that overlap themselves).
 // From these follow the hair mask (union of covered faces, holes kept), the silhouette and the
@@ -61,11 +61,20 @@ struct ArrangementOptions {
   // it for every point of the face, and the picture no longer depends on how the outlines happen
   // to subdivide the hair. Seams of cells that something nearer provably hides are left out.
   bool depth_seams = true;
+  // With depth_seams, split them also where a wisp passes behind an occluder (the head, the
+  // body; vector/depth_seams.hpp, occluder_seams): the hair's edge against the body then no longer
+  // depends on the subdivision either, to within the occluder's curvature over a wisp's triangle.
+  bool occluder_seams = true;
   // Leave out before the sweep the wisps that other wisps or occluders provably hide everywhere
   // (vector/hidden_wisps.hpp): no wisp that could be a face's front is dropped, and the faces and
   // edges inside the hair are fewer (about half the sweep's intersections on the curly scene).
   // With the depth seams no face's front depends on the outlines left out (docs/vector.md 5b).
   bool cull_hidden = true;
+  // With cull_hidden, also leave out the hidden cells of the wisps kept (those of their cells
+  // that something nearer covers wholly, vector/hidden_wisps.hpp): each wisp enters the sweep as
+  // the outlines of its runs of other cells, closed by lines across the band (cuts). About half
+  // the cells of the wisps kept are hidden on the shipped scenes.
+  bool cut_hidden = true;
   std::vector<Occluder> occluders;
   HairBase base;  // empty: none
   // Null: ours (exact predicates on snapped input). `wisp-bench arrangement` passes
@@ -94,7 +103,8 @@ struct InkLine {
 
 struct ArrangementStats {
   int wisps = 0;  // wisps inserted (after culling those wholly outside the view or hidden)
-  int hidden_wisps = 0, hidden_segments = 0;  // left out as hidden (cull_hidden)
+  int hidden_wisps = 0, hidden_segments = 0;  // left out as hidden (cull_hidden, cut_hidden)
+  int cuts = 0;                               // lines across bands closing their kept runs
   int segments = 0;                           // input segments, frame sides included
   int seam_segments = 0;                      // of them, depth seams (vector/depth_seams.hpp)
   int vertices = 0, edges = 0, faces = 0;

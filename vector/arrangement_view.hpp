@@ -34,6 +34,7 @@ struct ViewEdgeSource {
   bool visible = false;
   bool base = false;  // a piece of the hair base's boundary (s0, s1 on its path)
   bool seam = false;  // a depth seam (vector/depth_seams.hpp): where two wisps swap depth order
+  bool cut = false;   // a line across the wisp's band, beyond which its hidden cells were left out
 };
 
 struct ViewEdge {

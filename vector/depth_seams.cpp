@@ -15,6 +15,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
 
 #include "vector/band_depth.hpp"
 #include "vector/buckets.hpp"
@@ -102,14 +105,46 @@ void seam_piece(const Triangle& a, const Triangle& b, int seam_id,
   out.push_back({p0, p1, seam_id});
 }
 
-}  // namespace
+// The piece of triangle `tri` between the two of its edges where `behind` changes from one corner
+// to the next, at the points cross(k, l) gives for edge (k, l), if any.
+template <class Cross>
+void change_piece(const Triangle& tri, const std::array<bool, 3>& behind, Cross&& cross,
+                  int seam_id, std::vector<OutlineSegment>& out) {
+  std::array<Vector2d, 2> p;
+  std::array<bool, 2> outline{};
+  int n = 0;  // the changes around a triangle: none or two
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    if (behind[k] == behind[l]) continue;
+    p[n] = cross(k, l);
+    outline[n++] = tri.outline[k];
+  }
+  if (n != 2 || p[0] == p[1]) return;
+  const Vector2d dir = (p[1] - p[0]).normalized();
+  out.push_back({outline[0] ? Vector2d(p[0] - kOvershoot * dir) : p[0],
+                 outline[1] ? Vector2d(p[1] + kOvershoot * dir) : p[1], seam_id});
+}
 
-std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
-                                        const std::vector<char>& used,
-                                        const std::vector<std::vector<char>>& hidden, int seam_id,
-                                        const Eigen::AlignedBox2d& view) {
-  std::vector<Triangle> tris;
-  Eigen::AlignedBox2d all;
+// Where the eye rays through segment (u, v) stop meeting an occluder that they meet at u and miss
+// at v, to 2^-8 of the segment, found from the corners in lexicographic order so that both
+// triangles sharing the edge get the same point.
+Vector2d silhouette_on(Vector2d u, Vector2d v, bool hit_at_u,
+                       const std::function<double(const Vector2d&)>& depth) {
+  if (v.x() < u.x() || (v.x() == u.x() && v.y() < u.y())) std::swap(u, v), hit_at_u = !hit_at_u;
+  double hit = hit_at_u ? 0 : 1, miss = 1 - hit;
+  for (int i = 0; i < 8; ++i) {
+    const double mid = 0.5 * (hit + miss);
+    (std::isfinite(depth(u + mid * (v - u))) ? hit : miss) = mid;
+  }
+  return u + 0.5 * (hit + miss) * (v - u);
+}
+
+// Calls fn(Triangle) for every triangle with area of the kept cells of the used wisps that meets
+// `view` (an empty box: all), with its outline edges marked.
+template <class F>
+void for_kept_triangles(const std::vector<Wisp>& wisps, const std::vector<char>& used,
+                        const std::vector<std::vector<char>>& hidden,
+                        const Eigen::AlignedBox2d& view, F&& fn) {
   for (int w = 0; w < int(wisps.size()); ++w) {
     if (!used[w]) continue;
     for (int i = 0; i + 1 < int(wisps[w].sections.size()); ++i) {
@@ -126,11 +161,88 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
         if (e1.x() * e2.y() - e1.y() * e2.x() == 0) continue;  // no area
         tri.lo = std::min({t.z[0], t.z[1], t.z[2]}), tri.hi = std::max({t.z[0], t.z[1], t.z[2]});
         mark_outline(tri, wisps[w], i);
-        all.extend(tri.box);
-        tris.push_back(tri);
+        fn(tri, i);
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
+                                           const std::vector<char>& used,
+                                           const std::vector<std::vector<char>>& hidden,
+                                           const std::vector<Occluder>& occluders, int seam_id,
+                                           const Eigen::AlignedBox2d& view) {
+  std::vector<OutlineSegment> seams;
+  std::vector<Eigen::AlignedBox2d> rings;
+  for (const Occluder& o : occluders) {
+    Eigen::AlignedBox2d box;
+    for (const Vector2d& p : o.ring) box.extend(p);
+    rings.push_back(box);
+  }
+  // Per wisp and occluder, the occluder's depth at each section's two points (NaN: not cast yet),
+  // and the silhouette points found on the edges between them: the corners of a wisp's triangles
+  // are its sections' points, each shared by up to six triangles, each edge by two.
+  std::vector<double> at;
+  std::unordered_map<std::uint64_t, Vector2d> silhouettes;
+  int at_wisp = -1;
+  for_kept_triangles(wisps, used, hidden, view, [&](const Triangle& tri, int cell) {
+    const Wisp& w = wisps[tri.wisp];
+    const size_t points = 2 * w.sections.size();
+    if (tri.wisp != at_wisp) {
+      at.assign(points * occluders.size(), NAN), at_wisp = tri.wisp;
+      silhouettes.clear();
+    }
+    // Which section point each corner is (they are exact copies).
+    std::array<int, 3> key{};
+    for (int c = 0; c < 3; ++c)
+      for (int j : {cell, cell + 1}) {
+        if (tri.t.v[c] == w.sections[j].left) key[c] = 2 * j;
+        if (tri.t.v[c] == w.sections[j].right) key[c] = 2 * j + 1;
+      }
+    for (size_t k = 0; k < occluders.size(); ++k) {
+      if (!rings[k].intersects(tri.box) || !occluders[k].depth) continue;
+      std::array<double, 3> f;  // the wisp's depth minus the occluder's, NaN on a miss
+      for (int c = 0; c < 3; ++c) {
+        double& z = at[k * points + key[c]];
+        if (std::isnan(z)) z = occluders[k].depth(tri.t.v[c]);
+        f[c] = std::isfinite(z) ? tri.t.z[c] - z : NAN;
+      }
+      // The wisp is behind where the ray meets the occluder nearer; where it misses, the wisp is
+      // in front, and the change lies at the occluder's silhouette (inside its ring, which is a
+      // convex hull).
+      const std::array<bool, 3> behind = {f[0] > 0, f[1] > 0, f[2] > 0};
+      change_piece(
+          tri, behind,
+          [&](int a, int b) {
+            if (!std::isnan(f[a]) && !std::isnan(f[b]))
+              return crossing(tri.t.v[a], tri.t.v[b], f[a], f[b]);
+            const std::uint64_t edge =
+                (std::uint64_t(k) * points + std::min(key[a], key[b])) * points +
+                std::max(key[a], key[b]);
+            const auto [it, added] = silhouettes.try_emplace(edge);
+            if (added)
+              it->second =
+                  silhouette_on(tri.t.v[a], tri.t.v[b], !std::isnan(f[a]), occluders[k].depth);
+            return it->second;
+          },
+          seam_id, seams);
+    }
+  });
+  return seams;
+}
+
+std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
+                                        const std::vector<char>& used,
+                                        const std::vector<std::vector<char>>& hidden, int seam_id,
+                                        const Eigen::AlignedBox2d& view) {
+  std::vector<Triangle> tris;
+  Eigen::AlignedBox2d all;
+  for_kept_triangles(wisps, used, hidden, view, [&](const Triangle& tri, int) {
+    all.extend(tri.box);
+    tris.push_back(tri);
+  });
   std::vector<OutlineSegment> seams;
   if (tris.empty()) return seams;
 

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "vector/arrangement.hpp"
 #include "vector/planar_map.hpp"
 #include "vector/wisp.hpp"
 
@@ -23,5 +24,19 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
                                         const std::vector<char>& used,
                                         const std::vector<std::vector<char>>& hidden, int seam_id,
                                         const Eigen::AlignedBox2d& view);
+
+// The seams between the same wisps' triangles and the occluders: where a wisp passes behind the
+// head or the body. An occluder's depth is a ray cast, not affine, so over each triangle of a wisp
+// that meets its ring the difference of the two depths is taken as the affine map through its
+// values at the three corners (one ray a corner, shared by the triangles around it), and the seam
+// piece is that map's zero line. A corner where the ray misses counts as the wisp in front. The
+// pieces join up like the wisps' seams; where the occluder's surface bends or folds inside a
+// triangle the seam is off the true crossing by what the affine map misses, and the face it
+// bounds is still decided at its own sample point with the true depths.
+std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
+                                           const std::vector<char>& used,
+                                           const std::vector<std::vector<char>>& hidden,
+                                           const std::vector<Occluder>& occluders, int seam_id,
+                                           const Eigen::AlignedBox2d& view);
 
 }  // namespace wisp::vector

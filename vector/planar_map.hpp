@@ -15,6 +15,9 @@ namespace wisp::vector {
 // outline (wisp interior on its left in CGAL's orientation), or a side of the view frame (wisp
 // -1). Outline parameter and depth are linear along it. Occluders and the hair base follow the
 // wisps' indices; a segment of the hair base knows its path (`ring`) and that path's parameter.
+// A cut is a line across a wisp's band where the arrangement left out the band's hidden cells
+// beyond it (ArrangementOptions::cut_hidden): no outline runs there, so it has no outline
+// parameter (s0 == s1).
 struct OutlineSegment {
   Eigen::Vector2d a, b;
   int wisp = -1;
@@ -22,6 +25,7 @@ struct OutlineSegment {
   double s0 = 0, s1 = 0;
   double z0 = 0, z1 = 0;
   int ring = 0;
+  bool cut = false;
 };
 
 // Index-based doubly connected edge list. Edge e owns halfedges 2e and 2e+1 (twins: h ^ 1). A

@@ -700,6 +700,10 @@ std::optional<Wisp> build_wisp(const sim::ProjectedStrand& strand, double focal_
 }
 
 std::vector<OutlineVertex> outline_polygon(const Wisp& w) {
+  return outline_polygon(w, 0, int(w.sections.size()) - 1);
+}
+
+std::vector<OutlineVertex> outline_polygon(const Wisp& w, int first, int last) {
   std::vector<OutlineVertex> poly;
   auto add = [&](const Vector2d& p, double s, double t, double depth, Side side) {
     if (!poly.empty() && poly.back().p == p) {
@@ -709,13 +713,14 @@ std::vector<OutlineVertex> outline_polygon(const Wisp& w) {
     poly.push_back({p, s, t, depth, side});
   };
   const auto& sec = w.sections;
-  const int n = int(sec.size()) - 1;
-  const bool tip_cap = sec[n].left != sec[n].right;
-  for (int i = 0; i < n; ++i) add(sec[i].left, sec[i].s_left, sec[i].t, sec[i].depth, Side::Left);
-  add(sec[n].left, sec[n].s_left, sec[n].t, sec[n].depth, tip_cap ? Side::Tip : Side::Right);
-  for (int i = n - (tip_cap ? 0 : 1); i >= 1; --i)
+  const bool tip_cap = sec[last].left != sec[last].right;
+  for (int i = first; i < last; ++i)
+    add(sec[i].left, sec[i].s_left, sec[i].t, sec[i].depth, Side::Left);
+  add(sec[last].left, sec[last].s_left, sec[last].t, sec[last].depth,
+      tip_cap ? Side::Tip : Side::Right);
+  for (int i = last - (tip_cap ? 0 : 1); i > first; --i)
     add(sec[i].right, sec[i].s_right, sec[i].t, sec[i].depth, Side::Right);
-  add(sec[0].right, sec[0].s_right, sec[0].t, sec[0].depth, Side::Root);
+  add(sec[first].right, sec[first].s_right, sec[first].t, sec[first].depth, Side::Root);
   if (poly.size() > 1 && poly.back().p == poly.front().p) poly.pop_back();
   return poly;
 }

@@ -107,6 +107,10 @@ struct OutlineVertex {
   Side side = Side::Left;
 };
 std::vector<OutlineVertex> outline_polygon(const Wisp& wisp);
+// The polygon of the band between sections first < last alone: left[first..last], then
+// right[last..first]; its caps are the two sections' lines across the band (Side::Tip at `last`,
+// Side::Root at `first`), with the sections' outline parameters.
+std::vector<OutlineVertex> outline_polygon(const Wisp& wisp, int first, int last);
 
 // Builds one wisp per strand that has at least two distinct (visible) samples, in strand order.
 // Zero-length strands are skipped. Throws std::invalid_argument naming the strand and sample for

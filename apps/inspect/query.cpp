@@ -158,8 +158,21 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
         out.push_back("  source: a depth seam (two wisps swap depth order here)");
         continue;
       }
+      if (s.wisp <= -2) {  // occluder k is -2 - k
+        out.push_back(
+            format("  source: the silhouette of occluder %d (the head or the body)", -2 - s.wisp));
+        continue;
+      }
       if (s.wisp < 0) {
         out.push_back("  source: a side of the view frame");
+        continue;
+      }
+      if (s.cut) {
+        out.push_back(
+            format("  source: wisp %d, a cut across its band (its hidden cells beyond "
+                   "are left out), hidden",
+                   s.wisp));
+        if (wisp < 0) wisp = s.wisp;
         continue;
       }
       out.push_back(format("  source: wisp %d, %s side, s %.5f -> %.5f, %s", s.wisp,
@@ -235,10 +248,12 @@ nlohmann::json dump_arrangement(const InspectFrame& f) {
     nlohmann::json sources = nlohmann::json::array();
     for (const vector::ViewEdgeSource& s : e.sources)
       sources.push_back({{"wisp", s.wisp},
-                         {"side", s.base       ? "base"
-                                  : s.seam     ? "seam"
-                                  : s.wisp < 0 ? "frame"
-                                               : vector::to_string(s.side)},
+                         {"side", s.base         ? "base"
+                                  : s.seam       ? "seam"
+                                  : s.cut        ? "cut"
+                                  : s.wisp <= -2 ? "occluder"
+                                  : s.wisp < 0   ? "frame"
+                                                 : vector::to_string(s.side)},
                          {"s", {s.s0, s.s1}},
                          {"visible", s.visible}});
     edges.push_back({{"id", i},

@@ -36,6 +36,7 @@ nlohmann::json frame_stats(const SceneFrames& frames, int k, const FrameResult& 
           {"intersections", r.arrangement.stats.intersections},
           {"hidden_wisps", r.arrangement.stats.hidden_wisps},
           {"hidden_segments", r.arrangement.stats.hidden_segments},
+          {"cuts", r.arrangement.stats.cuts},
           {"seam_segments", r.arrangement.stats.seam_segments},
           {"solve_window", {r.window.x, r.window.y, r.window.width, r.window.height}},
           {"solver_cycles", r.solve.cycles},

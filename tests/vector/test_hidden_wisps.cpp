@@ -3,6 +3,7 @@
 // even through a gap narrower than the cull's squares, or nearer than its cover at one end, is
 // kept.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "tests/vector/scenes.hpp"
 #include "vector/arrangement.hpp"
@@ -85,4 +86,46 @@ TEST_CASE("a wisp that shows through a gap narrower than a square is kept", "[ve
   const auto r_on = arrange({k, rising}, true), r_off = arrange({k, rising}, false);
   CHECK(r_on.stats.hidden_wisps == 0);
   check_same_outputs(r_on, r_off);
+}
+
+TEST_CASE("the hidden cells of a wisp that shows are cut out of the sweep", "[vector][cull]") {
+  // A far wavy band (many cells) crossing under a wide near band: its middle is hidden, both its
+  // ends show.
+  const auto k = band(0, {250, 100}, {250, 300}, 2, 2, 0.15);
+  vector::WispStyle style;
+  style.width = 0.025;
+  const auto wavy = vector::build_wisp(
+      test::strand_from(
+          1, 24,
+          [](double u) { return Eigen::Vector3d(100 + 300 * u, 200 + 3 * std::sin(20 * u), 3); }),
+      800, style);
+  REQUIRE(wavy);
+  const auto& d = *wavy;
+  const auto on = arrange({k, d}, true), off = arrange({k, d}, false);
+  CHECK(on.stats.hidden_wisps == 0);
+  CHECK(on.stats.cuts == 2);  // one line across the band at each end of the hidden run
+  CHECK(on.stats.hidden_segments > 0);
+  CHECK(on.stats.segments < off.stats.segments);
+  CHECK(!on.visible[1].empty());
+  check_same_outputs(on, off);
+
+  // The cuts are hidden, carry no outline parameter, and no ink runs along them.
+  vector::ArrangementOptions o;
+  o.view = vector::image_rect(512, 512);
+  o.keep_faces = true;
+  const auto view = vector::build_arrangement({k, d}, o).view;
+  int cut_edges = 0;
+  for (const auto& e : view.edges)
+    for (const auto& s : e.sources)
+      if (s.cut) {
+        ++cut_edges;
+        CHECK(s.wisp == 1);
+        CHECK(!s.visible);
+        CHECK(s.s0 == s.s1);
+        CHECK(!e.silhouette);
+        CHECK(!e.occlusion);
+      }
+  CHECK(cut_edges >= 2);
+  o.cut_hidden = false;
+  CHECK(vector::build_arrangement({k, d}, o).stats.cuts == 0);
 }

@@ -159,6 +159,31 @@ TEST_CASE("outline is closed root to tip to root with the interior at winding +1
   CHECK((w->sections[0].left - w->sections[0].centre).dot(Vector2d(d.y(), -d.x())) > 0);
 }
 
+TEST_CASE("the polygon of a run of a band's cells is closed by its two sections",
+          "[vector][wisp]") {
+  const auto w =
+      vector::build_wisp(test::straight(0, {50, 100}, {250, 140}, 2.0, 3.0, 6), 800, wide());
+  REQUIRE(w);
+  REQUIRE(w->sections.size() >= 4);
+  const auto& sec = w->sections;
+  const auto poly = vector::outline_polygon(*w, 1, 3);
+  REQUIRE(poly.size() == 6);
+  const Vector2d expected[6] = {sec[1].left,  sec[2].left,  sec[3].left,
+                                sec[3].right, sec[2].right, sec[1].right};
+  const vector::Side sides[6] = {vector::Side::Left,  vector::Side::Left,  vector::Side::Tip,
+                                 vector::Side::Right, vector::Side::Right, vector::Side::Root};
+  for (int i = 0; i < 6; ++i) {
+    CHECK(poly[i].p == expected[i]);
+    CHECK(poly[i].side == sides[i]);
+  }
+  CHECK(signed_area(poly) > 0);  // turns the way the whole outline does
+  // The whole range is the whole outline.
+  const auto all = vector::outline_polygon(*w, 0, int(sec.size()) - 1);
+  const auto whole = vector::outline_polygon(*w);
+  REQUIRE(all.size() == whole.size());
+  for (size_t i = 0; i < all.size(); ++i) CHECK(all[i].p == whole[i].p);
+}
+
 TEST_CASE("a tapered root starts at a point: no root cap, no cut end", "[vector][wisp]") {
   const auto s = test::straight(0, {50, 100}, {250, 140}, 2.0, 3.0, 6);
   auto style = wide();
