@@ -13,6 +13,7 @@ int run_arrangement(const std::vector<std::string>& args);
 int run_sim(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
+int run_fronts(const std::vector<std::string>& args);
 int run_diffuse(const std::vector<std::string>& args);
 int run_groom(const std::vector<std::string>& args);
 // Every row of docs/performance.md's frame table, from the others; not part of `all`.

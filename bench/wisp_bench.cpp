@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
       {"sim", wisp::bench::run_sim},         {"render", wisp::bench::run_render},
       {"quality", wisp::bench::run_quality}, {"diffuse", wisp::bench::run_diffuse},
       {"groom", wisp::bench::run_groom},     {"frame-table", wisp::bench::run_frame_table},
+      {"fronts", wisp::bench::run_fronts},
   };
   if (argc < 2) {
     std::fprintf(stderr, "usage: wisp-bench NAME [args...]   NAME: all");

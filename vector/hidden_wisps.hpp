@@ -27,7 +27,9 @@ struct HiddenParts {
   // Per wisp with segments, per cell (sections i and i + 1): 1 where something covering every
   // square the cell's box meets is nearer than all of the cell (every cell of a hidden wisp). No
   // face's front can then be the wisp inside the cell, so no depth seam of it can matter
-  // (vector/depth_seams.hpp).
+  // (vector/depth_seams.hpp), and the cell can be left out of the sweep
+  // (ArrangementOptions::cut_hidden): of whatever covers a square, the nearest has no hidden cell
+  // meeting it, so it still covers the square when every hidden cell is left out.
   std::vector<std::vector<char>> cells;
 };
 
