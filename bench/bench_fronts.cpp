@@ -1,10 +1,8 @@
 // wisp-bench fronts: how right the arrangement's fronts are where hair meets the head and body.
 // For the default and curly scenes, frame 40 at 512^2 and 2048^2 (`wisp-bench fronts [SIZE...]`),
-// random points are thrown in every covered face inside the view, more than 1e-3 px inside it,
-// and at each the depths there decide: the nearest of the face's covering wisps (band_depth)
-// against the occluders whose rings hold the point (their ray cast). Where that is not the
-// face's front (a wisp, or none for an occluder), the point counts as wrong, and the face's area
-// times its share of wrong points as wrong area. The same frame's arrangement is built three
+// 16 random points a covered face are decided by the depths there and compared with the face's
+// front (vector/front_check.hpp): the wrong points, and the faces' areas times their shares of
+// wrong points. The same frame's arrangement is built three
 // ways in the same run: as rendered, without the occluder seams, and without those and the cut
 // of hidden cells (vector/arrangement.hpp). Between wisps the depth seams make every point right
 // (tests/vector/test_depth_seams.cpp); what this measures is the hair's edge against the body.
@@ -15,93 +13,25 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "apps/render/render_pipeline.hpp"
 #include "apps/render/scene_frames.hpp"
 #include "bench/benches.hpp"
-#include "vector/band_depth.hpp"
+#include "vector/front_check.hpp"
 
 namespace wisp::bench {
 namespace {
 
 namespace fs = std::filesystem;
-using Eigen::Vector2d;
 
-// Whether p is inside the rings (even-odd), and its distance to their nearest edge.
-std::pair<bool, double> locate(const std::vector<const std::vector<Vector2d>*>& rings,
-                               const Vector2d& p) {
-  bool in = false;
-  double margin = INFINITY;
-  for (const auto* ring : rings)
-    for (size_t i = 0, j = ring->size() - 1; i < ring->size(); j = i++) {
-      const Vector2d &a = (*ring)[j], &b = (*ring)[i];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-      const Vector2d ab = b - a;
-      const double l = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-      margin = std::min(margin, (a + l * ab - p).norm());
-    }
-  return {in, margin};
-}
-
-double ring_area(const std::vector<Vector2d>& r) {
-  double a = 0;
-  for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-    a += r[j].x() * r[i].y() - r[i].x() * r[j].y();
-  return 0.5 * std::abs(a);
-}
-
-struct Wrong {
-  long faces = 0, points = 0, wrong_points = 0, wrong_faces = 0;
-  double area = 0, wrong_area = 0;  // px^2
-};
-
-Wrong check(const std::vector<vector::Wisp>& wisps, const vector::ArrangementView& view,
-            const std::vector<vector::Occluder>& occluders) {
-  Wrong c;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (const vector::ViewFace& f : view.faces) {
-    if (f.cover.empty() || f.outer.empty() || !f.in_view) continue;
-    std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
-    Eigen::AlignedBox2d box;
-    for (const Vector2d& p : f.outer) box.extend(p);
-    double area = ring_area(f.outer);
-    for (const auto& h : f.holes) rings.push_back(&h), area -= ring_area(h);
-    ++c.faces;
-    c.area += area;
-    int tried = 0, wrong = 0;
-    for (int k = 0; k < 16; ++k) {
-      const Vector2d p = box.min() + Vector2d(unit(rng), unit(rng)).cwiseProduct(box.sizes());
-      const auto [in, margin] = locate(rings, p);
-      if (!in || margin < 1e-3) continue;
-      double best = INFINITY;
-      int nearest = -1;
-      for (const auto& [w, winding] : f.cover)
-        if (const double z = vector::band_depth(wisps[w], p).depth; z < best) best = z, nearest = w;
-      double occluder = INFINITY;
-      for (const vector::Occluder& o : occluders)
-        if (locate({&o.ring}, p).first) occluder = std::min(occluder, o.depth(p));
-      if (std::abs(occluder - best) < 1e-9 * best) continue;  // a tie either way
-      ++tried;
-      wrong += (occluder < best ? -1 : nearest) != f.front;
-    }
-    c.points += tried, c.wrong_points += wrong, c.wrong_faces += wrong > 0;
-    if (tried > 0) c.wrong_area += area * wrong / tried;
-  }
-  return c;
-}
-
-nlohmann::json to_json(const Wrong& c) {
+nlohmann::json to_json(const vector::FrontCheck& c) {
   return {{"faces", c.faces},
           {"points", c.points},
           {"wrong_points", c.wrong_points},
           {"wrong_faces", c.wrong_faces},
-          {"covered_px2", c.area},
+          {"covered_px2", c.covered_area},
           {"wrong_px2", c.wrong_area}};
 }
 
@@ -159,7 +89,9 @@ int run_fronts(const std::vector<std::string>& args) {
         arr.cut_hidden = way.cut;
         arr.occluder_seams = way.occluder_seams;
         const vector::WispArrangement a = vector::build_arrangement(r.wisps, arr);
-        row[way.name] = to_json(check(r.wisps, a.view, arr.occluders));
+        vector::FrontCheckOptions check;
+        check.points_per_face = 16;
+        row[way.name] = to_json(vector::check_fronts(r.wisps, a.view, arr.occluders, check));
         row[way.name]["arrangement_ms"] = a.stats.sweep_ms + a.stats.resolve_ms;
       }
       results.push_back(std::move(row));

@@ -3,6 +3,7 @@
 // get a seam there, and each side takes its own front; on random frames every point of every hair
 // face has the face's front as its nearest covering wisp, with the hidden-wisp cull on or off,
 // which without the seams does not hold.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
@@ -12,6 +13,8 @@
 #include "vector/arrangement.hpp"
 #include "vector/band_depth.hpp"
 #include "vector/depth_seams.hpp"
+#include "vector/front_check.hpp"
+#include "vector/polygon.hpp"
 #include "vector/wisp.hpp"
 
 using namespace wisp;
@@ -39,24 +42,6 @@ vector::WispArrangement arrange(const std::vector<vector::Wisp>& wisps, bool sea
   return vector::build_arrangement(wisps, o);
 }
 
-// Distance from p to the nearest edge of the rings, and whether p is inside (even-odd).
-std::pair<bool, double> locate(const std::vector<const std::vector<Vector2d>*>& rings,
-                               const Vector2d& p) {
-  bool in = false;
-  double margin = INFINITY;
-  for (const auto* ring : rings)
-    for (size_t i = 0, j = ring->size() - 1; i < ring->size(); j = i++) {
-      const Vector2d &a = (*ring)[j], &b = (*ring)[i];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-      const Vector2d ab = b - a;
-      const double l = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-      margin = std::min(margin, (a + l * ab - p).norm());
-    }
-  return {in, margin};
-}
-
 // `count` wavy strands crowded into the middle of a 512 px frame at nearly the same depth, each
 // dipping back and forth along its length: many overlapping pairs swap depth order.
 std::vector<vector::Wisp> tangle(int count, std::uint32_t seed) {
@@ -78,47 +63,6 @@ std::vector<vector::Wisp> tangle(int count, std::uint32_t seed) {
   vector::WispStyle style;
   style.width = 0.04;
   return vector::build_wisps(test::frame_of(strands), style);
-}
-
-struct FrontCheck {
-  long points = 0, wrong = 0, faces = 0, wrong_faces = 0;
-};
-
-// Random points in every hair face whose front is a wisp, each more than 1e-3 px inside: the
-// nearest of the face's covering wisps there (band_depth) against the face's front. Points where
-// two of them are within 1e-9 of each other in depth are ties either way and not counted.
-FrontCheck check_fronts(const std::vector<vector::Wisp>& wisps, const vector::ArrangementView& v) {
-  FrontCheck c;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (const vector::ViewFace& f : v.faces) {
-    if (f.front < 0 || f.outer.empty()) continue;
-    std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
-    Eigen::AlignedBox2d box;
-    for (const Vector2d& p : f.outer) box.extend(p);
-    for (const auto& h : f.holes) rings.push_back(&h);
-    ++c.faces;
-    bool wrong = false;
-    for (int k = 0; k < 12; ++k) {
-      const Vector2d p = box.min() + Vector2d(unit(rng), unit(rng)).cwiseProduct(box.sizes());
-      const auto [in, margin] = locate(rings, p);
-      if (!in || margin < 1e-3) continue;
-      double best = INFINITY, second = INFINITY;
-      int nearest = -1;
-      for (const auto& [w, winding] : f.cover) {
-        const double z = vector::band_depth(wisps[w], p).depth;
-        if (z < best)
-          second = best, best = z, nearest = w;
-        else
-          second = std::min(second, z);
-      }
-      if (second - best < 1e-9 * best) continue;
-      ++c.points;
-      if (nearest != f.front) ++c.wrong, wrong = true;
-    }
-    c.wrong_faces += wrong;
-  }
-  return c;
 }
 
 }  // namespace
@@ -159,10 +103,10 @@ TEST_CASE("two wisps swapping depth inside their overlap are split by a seam", "
   CHECK(with.stats.seam_segments > 0);
   const auto front_at = [](const vector::WispArrangement& arr, const Vector2d& p) {
     for (const vector::ViewFace& f : arr.view.faces) {
-      if (f.outer.empty()) continue;
-      std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
-      for (const auto& h : f.holes) rings.push_back(&h);
-      if (locate(rings, p).first) return f.front;
+      if (f.outer.empty() || !vector::inside_polygon(f.outer, p)) continue;
+      if (std::none_of(f.holes.begin(), f.holes.end(),
+                       [&](const auto& h) { return vector::inside_polygon(h, p); }))
+        return f.front;
     }
     return -2;
   };
@@ -184,51 +128,17 @@ TEST_CASE("every point of a hair face has the face's front", "[vector][seams]") 
     for (bool cull : {false, true}) {
       INFO("cull " << cull);
       const auto arr = arrange(wisps, true, cull);
-      const FrontCheck c = check_fronts(wisps, arr.view);
+      const vector::FrontCheck c = vector::check_fronts(wisps, arr.view, {});
       CHECK(c.points > 1000);
-      CHECK(c.wrong == 0);
+      CHECK(c.wrong_points == 0);
       // With the cull, the hidden cells of the wisps kept are cut out of the sweep too.
       CHECK((arr.stats.cuts > 0) == cull);
     }
     // Without the seams the one sample per face is wrong somewhere: the scene tests the seams.
-    const FrontCheck off = check_fronts(wisps, arrange(wisps, false, false).view);
+    const vector::FrontCheck off =
+        vector::check_fronts(wisps, arrange(wisps, false, false).view, {});
     CHECK(off.wrong_faces > 0);
   }
-}
-
-// Random points in every covered face inside the view, more than 1e-3 px inside it and `margin`
-// px from the occluder's silhouette: whether the face's front (a wisp, or -1 for the occluder)
-// is what the depths there say.
-FrontCheck check_against(const std::vector<vector::Wisp>& wisps, const vector::ArrangementView& v,
-                         const vector::Occluder& o, const std::function<double(Vector2d)>& edge,
-                         double margin) {
-  FrontCheck c;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (const vector::ViewFace& f : v.faces) {
-    if (f.cover.empty() || f.outer.empty() || !f.in_view) continue;
-    std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
-    Eigen::AlignedBox2d box;
-    for (const Vector2d& p : f.outer) box.extend(p);
-    for (const auto& h : f.holes) rings.push_back(&h);
-    ++c.faces;
-    bool wrong = false;
-    for (int k = 0; k < 12; ++k) {
-      const Vector2d p = box.min() + Vector2d(unit(rng), unit(rng)).cwiseProduct(box.sizes());
-      const auto [in, inside] = locate(rings, p);
-      if (!in || inside < 1e-3 || std::abs(edge(p)) < margin) continue;
-      double best = INFINITY;
-      int nearest = -1;
-      for (const auto& [w, winding] : f.cover)
-        if (const double z = vector::band_depth(wisps[w], p).depth; z < best) best = z, nearest = w;
-      const double zo = locate({&o.ring}, p).first ? o.depth(p) : INFINITY;
-      if (std::abs(zo - best) < 1e-9) continue;
-      ++c.points;
-      if ((zo < best ? -1 : nearest) != f.front) ++c.wrong, wrong = true;
-    }
-    c.wrong_faces += wrong;
-  }
-  return c;
 }
 
 TEST_CASE("where hair passes behind an occluder the faces are split there too", "[vector][seams]") {
@@ -240,7 +150,8 @@ TEST_CASE("where hair passes behind an occluder the faces are split there too", 
   disc.depth = [centre](const Vector2d& p) {
     return (p - centre).norm() < 60 ? 2.05 + 0.001 * (p.x() - centre.x()) : INFINITY;
   };
-  const auto rim = [centre](const Vector2d& p) { return (p - centre).norm() - 60; };
+  vector::FrontCheckOptions away;  // from the rim, by about a third of a triangle
+  away.skip = [centre](const Vector2d& p) { return std::abs((p - centre).norm() - 60) < 5; };
   for (std::uint32_t seed : {3u, 11u}) {
     INFO("seed " << seed);
     const auto wisps = tangle(40, seed);
@@ -253,12 +164,12 @@ TEST_CASE("where hair passes behind an occluder the faces are split there too", 
     // they join the points where a triangle's edges cross it by straight lines, and a triangle
     // whose corners all miss the disc gets none: within a triangle's size (about 16 px here) of
     // the rim some points may take the other side's front.
-    const FrontCheck c = check_against(wisps, with.view, disc, rim, 5);
+    const vector::FrontCheck c = vector::check_fronts(wisps, with.view, {disc}, away);
     CHECK(c.points > 1000);
-    CHECK(c.wrong == 0);
+    CHECK(c.wrong_points == 0);
     o.occluder_seams = false;
-    const FrontCheck off =
-        check_against(wisps, vector::build_arrangement(wisps, o).view, disc, rim, 5);
+    const vector::FrontCheck off =
+        vector::check_fronts(wisps, vector::build_arrangement(wisps, o).view, {disc}, away);
     CHECK(off.wrong_faces > 0);
     CHECK(with.stats.seam_segments > vector::build_arrangement(wisps, o).stats.seam_segments);
   }
