@@ -33,7 +33,8 @@ struct ViewEdgeSource {
   double s0 = 0, s1 = 0;
   bool visible = false;
   bool base = false;  // a piece of the hair base's boundary (s0, s1 on its path)
-  bool seam = false;  // a depth seam (vector/depth_seams.hpp): where two wisps swap depth order
+  bool seam = false;  // a depth seam (vector/depth_seams.hpp): two wisps, or a wisp and an
+                      // occluder, swap depth order here
   bool cut = false;   // a line across the wisp's band, beyond which its hidden cells were left out
 };
 

@@ -29,10 +29,12 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
 // head or the body. An occluder's depth is a ray cast, not affine, so over each triangle of a wisp
 // that meets its ring the difference of the two depths is taken as the affine map through its
 // values at the three corners (one ray a corner, shared by the triangles around it), and the seam
-// piece is that map's zero line. A corner where the ray misses counts as the wisp in front. The
-// pieces join up like the wisps' seams; where the occluder's surface bends or folds inside a
-// triangle the seam is off the true crossing by what the affine map misses, and the face it
-// bounds is still decided at its own sample point with the true depths.
+// piece is that map's zero line. A corner where the ray misses (the occluder's ring is a convex
+// hull) counts as the wisp in front; on an edge from there to a corner where the wisp is behind,
+// the change is the occluder's silhouette, found by bisection. The pieces join up like the wisps'
+// seams; where the occluder's surface bends or folds inside a triangle, or its silhouette dips
+// into a triangle whose corners all miss, the seam is off the true change, and the face it bounds
+// is still decided at its own sample point with the true depths.
 std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
                                            const std::vector<char>& used,
                                            const std::vector<std::vector<char>>& hidden,

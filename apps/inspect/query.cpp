@@ -155,7 +155,9 @@ std::vector<std::string> describe_point(const InspectFrame& f, const Eigen::Vect
         continue;
       }
       if (s.seam) {
-        out.push_back("  source: a depth seam (two wisps swap depth order here)");
+        out.push_back(
+            "  source: a depth seam (where two wisps, or a wisp and the head or body, "
+            "swap depth order)");
         continue;
       }
       if (s.wisp <= -2) {  // occluder k is -2 - k

@@ -124,7 +124,7 @@ void draw_legends(Writer& w, const InspectFrame& f, const WindowState& s) {
   if (l.has(Layer::Visibility)) {
     w.swatch(kVisibleColor, "visible outline piece");
     w.swatch(kHiddenColor, "hidden outline piece");
-    w.swatch(kSeamColor, "depth seam (two wisps swap depth)");
+    w.swatch(kSeamColor, "depth seam (two wisps, or hair and body, swap depth)");
   }
   if (l.has(Layer::Curves)) {
     w.swatch(kOnCurveColor, "on-curve control point");
