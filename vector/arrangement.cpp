@@ -77,38 +77,29 @@ void append_outline(const Wisp& wisp, int w, int first, int last,
 // visible cells: the hidden cells' sides no longer enter the sweep. Something nearer covers every
 // point of a hidden cell (vector/hidden_wisps.hpp), so leaving the cell out of its wisp's cover
 // changes no face's front, and a cut (the section line between a hidden and a kept cell) has the
-// same front on both sides: no visible piece, no ink. Returns the segments left out.
-int cut_hidden_cells(const std::vector<Wisp>& wisps, const HiddenParts& hidden,
-                     std::vector<OutlineSegment>& segments) {
+// same front on both sides: no visible piece, no ink.
+void cut_hidden_cells(const std::vector<Wisp>& wisps, const HiddenParts& hidden,
+                      std::vector<OutlineSegment>& segments) {
   const int n = int(wisps.size());
   std::vector<char> cut(n, 0);
   for (int w = 0; w < n; ++w)
     cut[w] = !hidden.wisps[w] &&
              std::find(hidden.cells[w].begin(), hidden.cells[w].end(), 1) != hidden.cells[w].end();
-  const size_t before = segments.size();
   segments.erase(std::remove_if(segments.begin(), segments.end(),
                                 [&](const OutlineSegment& s) {
                                   return s.wisp >= 0 && s.wisp < n && cut[s.wisp];
                                 }),
                  segments.end());
-  const int removed = int(before - segments.size());
-  int added = 0;
   for (int w = 0; w < n; ++w) {
     if (!cut[w]) continue;
     const std::vector<char>& cells = hidden.cells[w];
     for (int k = 0; k < int(cells.size());) {
-      if (cells[k]) {
-        ++k;
-        continue;
-      }
       const int first = k;
       while (k < int(cells.size()) && !cells[k]) ++k;
-      const size_t at = segments.size();
-      append_outline(wisps[w], w, first, k, segments);
-      added += int(segments.size() - at);
+      if (k > first) append_outline(wisps[w], w, first, k, segments);
+      while (k < int(cells.size()) && cells[k]) ++k;
     }
   }
-  return removed - added;
 }
 
 void check_wisp(const Wisp& w, int index) {
@@ -623,15 +614,16 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     for (const Occluder& o : options.occluders) cull.occluder_max_depth.push_back(o.max_depth);
     hidden = hidden_wisps(wisps, segments, cull);
     if (options.cull_hidden) {
-      const auto kept_end = std::remove_if(segments.begin(), segments.end(), [&](const auto& s) {
-        return s.wisp >= 0 && s.wisp < int(wisps.size()) && hidden.wisps[s.wisp];
-      });
-      out.stats.hidden_segments = int(segments.end() - kept_end);
-      segments.erase(kept_end, segments.end());
-      if (options.cut_hidden) {
-        out.stats.hidden_segments += cut_hidden_cells(wisps, hidden, segments);
-        for (const OutlineSegment& s : segments) out.stats.cuts += s.cut;
-      }
+      const size_t before = segments.size();
+      segments.erase(std::remove_if(segments.begin(), segments.end(),
+                                    [&](const auto& s) {
+                                      return s.wisp >= 0 && s.wisp < int(wisps.size()) &&
+                                             hidden.wisps[s.wisp];
+                                    }),
+                     segments.end());
+      if (options.cut_hidden) cut_hidden_cells(wisps, hidden, segments);
+      out.stats.hidden_segments = int(before) - int(segments.size());
+      for (const OutlineSegment& s : segments) out.stats.cuts += s.cut;
       for (char h : hidden.wisps) out.stats.hidden_wisps += h;
       out.stats.wisps -= out.stats.hidden_wisps;
     }
@@ -643,17 +635,11 @@ WispArrangement build_arrangement(const std::vector<Wisp>& wisps,
     for (const OutlineSegment& s : segments)
       if (s.wisp >= 0 && s.wisp < int(wisps.size())) used[s.wisp] = 1;
     const std::vector<OutlineSegment> seams =
-        depth_seams(wisps, used, hidden.cells, kSeamId,
+        depth_seams(wisps, used, hidden.cells,
+                    options.occluder_seams ? options.occluders : std::vector<Occluder>(), kSeamId,
                     options.clip_to_view ? options.view : Eigen::AlignedBox2d());
     out.stats.seam_segments = int(seams.size());
     segments.insert(segments.end(), seams.begin(), seams.end());
-    if (options.occluder_seams) {
-      const std::vector<OutlineSegment> behind =
-          occluder_seams(wisps, used, hidden.cells, options.occluders, kSeamId,
-                         options.clip_to_view ? options.view : Eigen::AlignedBox2d());
-      out.stats.seam_segments += int(behind.size());
-      segments.insert(segments.end(), behind.begin(), behind.end());
-    }
     out.stats.seams_ms = ms_since(ts);
   }
   const PlanarMap map = (options.arrange ? options.arrange : arrange_segments)(segments);

@@ -62,7 +62,7 @@ struct ArrangementOptions {
   // to subdivide the hair. Seams of cells that something nearer provably hides are left out.
   bool depth_seams = true;
   // With depth_seams, split them also where a wisp passes behind an occluder (the head, the
-  // body; vector/depth_seams.hpp, occluder_seams): the hair's edge against the body then no longer
+  // body; vector/depth_seams.hpp): the hair's edge against the body then no longer
   // depends on the subdivision either, to within the occluder's curvature over a wisp's triangle.
   bool occluder_seams = true;
   // Leave out before the sweep the wisps that other wisps or occluders provably hide everywhere

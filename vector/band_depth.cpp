@@ -91,12 +91,15 @@ bool cell_triangles(const Wisp& w, int i, std::array<CellTriangle, 2>& out) {
   // The diagonal l0-r1 when l1 and r0 lie on either side of it, else l1-r0: one of the two lies
   // inside any simple quadrilateral.
   const Vector2d d = r1 - l0;
+  const int pl0 = 2 * i, pr0 = 2 * i + 1, pl1 = 2 * i + 2, pr1 = 2 * i + 3;
   if (cross(d, l1 - l0) * cross(d, r0 - l0) < 0) {
     out[0] = triangle(l0, l1, r1, a.depth, b.depth, b.depth);
     out[1] = triangle(l0, r1, r0, a.depth, b.depth, a.depth);
+    out[0].point = {pl0, pl1, pr1}, out[1].point = {pl0, pr1, pr0};
   } else {
     out[0] = triangle(l0, l1, r0, a.depth, b.depth, a.depth);
     out[1] = triangle(l1, r1, r0, b.depth, b.depth, a.depth);
+    out[0].point = {pl0, pl1, pr0}, out[1].point = {pl1, pr1, pr0};
   }
   return cross(out[0].v[1] - out[0].v[0], out[0].v[2] - out[0].v[0]) != 0 ||
          cross(out[1].v[1] - out[1].v[0], out[1].v[2] - out[1].v[0]) != 0;

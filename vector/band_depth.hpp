@@ -23,6 +23,8 @@ namespace wisp::vector {
 struct CellTriangle {
   std::array<Eigen::Vector2d, 3> v;
   std::array<double, 3> z;
+  std::array<int, 3>
+      point{};  // which section point each corner is: 2 * section + (0 left, 1 right)
   Eigen::Vector2d grad{0, 0};
   double offset = 0;
   double depth(const Eigen::Vector2d& p) const { return grad.dot(p) + offset; }

@@ -139,42 +139,11 @@ Vector2d silhouette_on(Vector2d u, Vector2d v, bool hit_at_u,
   return u + 0.5 * (hit + miss) * (v - u);
 }
 
-// Calls fn(Triangle) for every triangle with area of the kept cells of the used wisps that meets
-// `view` (an empty box: all), with its outline edges marked.
-template <class F>
-void for_kept_triangles(const std::vector<Wisp>& wisps, const std::vector<char>& used,
-                        const std::vector<std::vector<char>>& hidden,
-                        const Eigen::AlignedBox2d& view, F&& fn) {
-  for (int w = 0; w < int(wisps.size()); ++w) {
-    if (!used[w]) continue;
-    for (int i = 0; i + 1 < int(wisps[w].sections.size()); ++i) {
-      if (w < int(hidden.size()) && i < int(hidden[w].size()) && hidden[w][i]) continue;
-      std::array<CellTriangle, 2> cell;
-      if (!cell_triangles(wisps[w], i, cell)) continue;
-      for (const CellTriangle& t : cell) {
-        Triangle tri;
-        tri.t = t, tri.wisp = w;
-        tri.box = Eigen::AlignedBox2d(t.v[0]);
-        tri.box.extend(t.v[1]), tri.box.extend(t.v[2]);
-        if (!view.isEmpty() && !view.intersects(tri.box)) continue;
-        const Vector2d e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
-        if (e1.x() * e2.y() - e1.y() * e2.x() == 0) continue;  // no area
-        tri.lo = std::min({t.z[0], t.z[1], t.z[2]}), tri.hi = std::max({t.z[0], t.z[1], t.z[2]});
-        mark_outline(tri, wisps[w], i);
-        fn(tri, i);
-      }
-    }
-  }
-}
-
-}  // namespace
-
-std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
-                                           const std::vector<char>& used,
-                                           const std::vector<std::vector<char>>& hidden,
-                                           const std::vector<Occluder>& occluders, int seam_id,
-                                           const Eigen::AlignedBox2d& view) {
-  std::vector<OutlineSegment> seams;
+// The seams between the triangles `tris` (of their wisps, in wisp order) and the occluders
+// (depth_seams.hpp).
+void occluder_pieces(const std::vector<Wisp>& wisps, const std::vector<Triangle>& tris,
+                     const std::vector<Occluder>& occluders, int seam_id,
+                     std::vector<OutlineSegment>& out) {
   std::vector<Eigen::AlignedBox2d> rings;
   for (const Occluder& o : occluders) {
     Eigen::AlignedBox2d box;
@@ -187,20 +156,13 @@ std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
   std::vector<double> at;
   std::unordered_map<std::uint64_t, Vector2d> silhouettes;
   int at_wisp = -1;
-  for_kept_triangles(wisps, used, hidden, view, [&](const Triangle& tri, int cell) {
-    const Wisp& w = wisps[tri.wisp];
-    const size_t points = 2 * w.sections.size();
+  for (const Triangle& tri : tris) {
+    const size_t points = 2 * wisps[tri.wisp].sections.size();
     if (tri.wisp != at_wisp) {
       at.assign(points * occluders.size(), NAN), at_wisp = tri.wisp;
       silhouettes.clear();
     }
-    // Which section point each corner is (they are exact copies).
-    std::array<int, 3> key{};
-    for (int c = 0; c < 3; ++c)
-      for (int j : {cell, cell + 1}) {
-        if (tri.t.v[c] == w.sections[j].left) key[c] = 2 * j;
-        if (tri.t.v[c] == w.sections[j].right) key[c] = 2 * j + 1;
-      }
+    const std::array<int, 3>& key = tri.t.point;
     for (size_t k = 0; k < occluders.size(); ++k) {
       if (!rings[k].intersects(tri.box) || !occluders[k].depth) continue;
       std::array<double, 3> f;  // the wisp's depth minus the occluder's, NaN on a miss
@@ -227,22 +189,41 @@ std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
                   silhouette_on(tri.t.v[a], tri.t.v[b], !std::isnan(f[a]), occluders[k].depth);
             return it->second;
           },
-          seam_id, seams);
+          seam_id, out);
     }
-  });
-  return seams;
+  }
 }
+
+}  // namespace
 
 std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
                                         const std::vector<char>& used,
-                                        const std::vector<std::vector<char>>& hidden, int seam_id,
+                                        const std::vector<std::vector<char>>& hidden,
+                                        const std::vector<Occluder>& occluders, int seam_id,
                                         const Eigen::AlignedBox2d& view) {
-  std::vector<Triangle> tris;
+  std::vector<Triangle> tris;  // in wisp order
   Eigen::AlignedBox2d all;
-  for_kept_triangles(wisps, used, hidden, view, [&](const Triangle& tri, int) {
-    all.extend(tri.box);
-    tris.push_back(tri);
-  });
+  for (int w = 0; w < int(wisps.size()); ++w) {
+    if (!used[w]) continue;
+    for (int i = 0; i + 1 < int(wisps[w].sections.size()); ++i) {
+      if (w < int(hidden.size()) && i < int(hidden[w].size()) && hidden[w][i]) continue;
+      std::array<CellTriangle, 2> cell;
+      if (!cell_triangles(wisps[w], i, cell)) continue;
+      for (const CellTriangle& t : cell) {
+        Triangle tri;
+        tri.t = t, tri.wisp = w;
+        tri.box = Eigen::AlignedBox2d(t.v[0]);
+        tri.box.extend(t.v[1]), tri.box.extend(t.v[2]);
+        if (!view.isEmpty() && !view.intersects(tri.box)) continue;
+        const Vector2d e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+        if (e1.x() * e2.y() - e1.y() * e2.x() == 0) continue;  // no area
+        tri.lo = std::min({t.z[0], t.z[1], t.z[2]}), tri.hi = std::max({t.z[0], t.z[1], t.z[2]});
+        mark_outline(tri, wisps[w], i);
+        all.extend(tri.box);
+        tris.push_back(tri);
+      }
+    }
+  }
   std::vector<OutlineSegment> seams;
   if (tris.empty()) return seams;
 
@@ -282,6 +263,7 @@ std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
         seam_piece(a, b, seam_id, seams);
       }
   }
+  occluder_pieces(wisps, tris, occluders, seam_id, seams);
   return seams;
 }
 

@@ -20,25 +20,21 @@ namespace wisp::vector {
 // triangles wholly outside `view` (an empty box: none), and the cells with hidden[w][i] set
 // (an empty vector: none; vector/hidden_wisps.hpp). Pairs of triangles are found on a uniform
 // grid; the output's order depends only on the input.
+//
+// Then the seams between the same triangles and the occluders (none: none), where a wisp passes
+// behind the head or the body. An occluder's depth is a ray cast, not affine, so over each
+// triangle that meets its ring the difference of the two depths is taken as the affine map
+// through its values at the three corners (one ray a corner, shared by the triangles around it),
+// and the seam piece is that map's zero line. A corner where the ray misses (the occluder's ring
+// is a convex hull) counts as the wisp in front; on an edge from there to a corner where the wisp
+// is behind, the change is the occluder's silhouette, found by bisection. The pieces join up like
+// the wisps' seams; where the occluder's surface bends or folds inside a triangle, or its
+// silhouette dips into a triangle whose corners all miss, the seam is off the true change, and
+// the face it bounds is still decided at its own sample point with the true depths.
 std::vector<OutlineSegment> depth_seams(const std::vector<Wisp>& wisps,
                                         const std::vector<char>& used,
-                                        const std::vector<std::vector<char>>& hidden, int seam_id,
+                                        const std::vector<std::vector<char>>& hidden,
+                                        const std::vector<Occluder>& occluders, int seam_id,
                                         const Eigen::AlignedBox2d& view);
-
-// The seams between the same wisps' triangles and the occluders: where a wisp passes behind the
-// head or the body. An occluder's depth is a ray cast, not affine, so over each triangle of a wisp
-// that meets its ring the difference of the two depths is taken as the affine map through its
-// values at the three corners (one ray a corner, shared by the triangles around it), and the seam
-// piece is that map's zero line. A corner where the ray misses (the occluder's ring is a convex
-// hull) counts as the wisp in front; on an edge from there to a corner where the wisp is behind,
-// the change is the occluder's silhouette, found by bisection. The pieces join up like the wisps'
-// seams; where the occluder's surface bends or folds inside a triangle, or its silhouette dips
-// into a triangle whose corners all miss, the seam is off the true change, and the face it bounds
-// is still decided at its own sample point with the true depths.
-std::vector<OutlineSegment> occluder_seams(const std::vector<Wisp>& wisps,
-                                           const std::vector<char>& used,
-                                           const std::vector<std::vector<char>>& hidden,
-                                           const std::vector<Occluder>& occluders, int seam_id,
-                                           const Eigen::AlignedBox2d& view);
 
 }  // namespace wisp::vector

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "vector/band_depth.hpp"
+#include "vector/polygon.hpp"
 
 namespace wisp::vector {
 
@@ -13,29 +14,21 @@ using Eigen::Vector2d;
 
 namespace {
 
-// Whether p is inside the rings (even-odd), and its distance to their nearest edge.
+// Whether p is inside the rings (even-odd over all of them), and its distance to their nearest
+// edge.
 std::pair<bool, double> locate(const std::vector<const std::vector<Vector2d>*>& rings,
                                const Vector2d& p) {
   bool in = false;
   double margin = INFINITY;
-  for (const auto* ring : rings)
+  for (const auto* ring : rings) {
+    in ^= inside_polygon(*ring, p);
     for (size_t i = 0, j = ring->size() - 1; i < ring->size(); j = i++) {
-      const Vector2d &a = (*ring)[j], &b = (*ring)[i];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-      const Vector2d ab = b - a;
+      const Vector2d &a = (*ring)[j], ab = (*ring)[i] - a;
       const double l = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
       margin = std::min(margin, (a + l * ab - p).norm());
     }
+  }
   return {in, margin};
-}
-
-double ring_area(const std::vector<Vector2d>& r) {
-  double a = 0;
-  for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-    a += r[j].x() * r[i].y() - r[i].x() * r[j].y();
-  return 0.5 * std::abs(a);
 }
 
 }  // namespace
@@ -50,8 +43,8 @@ FrontCheck check_fronts(const std::vector<Wisp>& wisps, const ArrangementView& v
     std::vector<const std::vector<Vector2d>*> rings = {&f.outer};
     Eigen::AlignedBox2d box;
     for (const Vector2d& p : f.outer) box.extend(p);
-    double area = ring_area(f.outer);
-    for (const auto& h : f.holes) rings.push_back(&h), area -= ring_area(h);
+    double area = std::abs(signed_area(f.outer));
+    for (const auto& h : f.holes) rings.push_back(&h), area -= std::abs(signed_area(h));
     ++c.faces;
     c.covered_area += area;
     int tried = 0, wrong = 0;

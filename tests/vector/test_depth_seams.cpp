@@ -179,8 +179,8 @@ TEST_CASE("depth seams are deterministic and skip hidden cells", "[vector][seams
   const auto wisps = tangle(30, 5);
   const std::vector<char> used(wisps.size(), 1);
   const auto view = vector::image_rect(512, 512);
-  const auto first = vector::depth_seams(wisps, used, {}, -2, view);
-  const auto again = vector::depth_seams(wisps, used, {}, -2, view);
+  const auto first = vector::depth_seams(wisps, used, {}, {}, -2, view);
+  const auto again = vector::depth_seams(wisps, used, {}, {}, -2, view);
   REQUIRE(first.size() == again.size());
   REQUIRE(!first.empty());
   for (size_t i = 0; i < first.size(); ++i) {
@@ -191,19 +191,20 @@ TEST_CASE("depth seams are deterministic and skip hidden cells", "[vector][seams
   // Every cell hidden: no seam. Every cell of one wisp hidden: fewer seams.
   std::vector<std::vector<char>> hidden(wisps.size());
   for (size_t w = 0; w < wisps.size(); ++w) hidden[w].assign(wisps[w].sections.size() - 1, 1);
-  CHECK(vector::depth_seams(wisps, used, hidden, -2, view).empty());
+  CHECK(vector::depth_seams(wisps, used, hidden, {}, -2, view).empty());
   size_t busiest = 0, most = 0;
   for (size_t w = 0; w < wisps.size(); ++w) {
     // Seams of wisp w: all seams minus those without it.
     std::vector<char> others(wisps.size(), 1);
     others[w] = 0;
-    const size_t with_w = first.size() - vector::depth_seams(wisps, others, {}, -2, view).size();
+    const size_t with_w =
+        first.size() - vector::depth_seams(wisps, others, {}, {}, -2, view).size();
     if (with_w > most) most = with_w, busiest = w;
   }
   REQUIRE(most > 0);
   std::vector<std::vector<char>> one(wisps.size());
   one[busiest].assign(wisps[busiest].sections.size() - 1, 1);
-  CHECK(vector::depth_seams(wisps, used, one, -2, view).size() == first.size() - most);
+  CHECK(vector::depth_seams(wisps, used, one, {}, -2, view).size() == first.size() - most);
 }
 
 TEST_CASE("seams of bands reaching far beyond the view stay few and in place", "[vector][seams]") {
@@ -212,7 +213,7 @@ TEST_CASE("seams of bands reaching far beyond the view stay few and in place", "
   const auto a = wisp_of(test::straight(0, {-50000, 250}, {50000, 250}, 2, 4, 64), 0.03);
   const auto b = wisp_of(test::straight(1, {-50000, 253}, {50000, 253}, 4, 2, 64), 0.03);
   const std::vector<char> used = {1, 1};
-  const auto seams = vector::depth_seams({a, b}, used, {}, -2, vector::image_rect(512, 512));
+  const auto seams = vector::depth_seams({a, b}, used, {}, {}, -2, vector::image_rect(512, 512));
   REQUIRE(!seams.empty());
   for (const vector::OutlineSegment& s : seams) {
     // The bands' depths meet at x = 0 on the centre line; across the overlap the seam stays near.
