@@ -14,6 +14,34 @@ namespace wisp::sim {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
+namespace {
+
+// How far outside a triangle's projection, in pixels, a ray may still be tested against it: far
+// above the rounding of the projection and of the 3D test.
+constexpr double kMargin = 1e-4;
+
+// The projected edges of triangle abc as lines n.p + c, n a unit normal pointing inwards (see
+// SurfaceRays::edge_); zeros (every point passes) for a triangle whose projection is a sliver:
+// twice its area below a millionth of its longest edge squared (a view of its plane within about
+// 1e-6 radians of edge-on), where the 3D test divides by nearly 0.
+std::array<double, 9> edge_lines(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
+  const Vector2d corner[3] = {a, b, c};
+  const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  const double longest2 =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  if (!(std::abs(area2) > 1e-6 * longest2)) return {};
+  std::array<double, 9> out;
+  for (int e = 0; e < 3; ++e) {
+    const Vector2d p = corner[e], d = corner[(e + 1) % 3] - p;
+    // Inwards is to the left of an edge of a triangle with area2 > 0, to the right otherwise.
+    const Vector2d n = (area2 > 0 ? Vector2d(-d.y(), d.x()) : Vector2d(d.y(), -d.x())) / d.norm();
+    out[3 * e] = n.x(), out[3 * e + 1] = n.y(), out[3 * e + 2] = -n.dot(p);
+  }
+  return out;
+}
+
+}  // namespace
+
 SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vector3i> triangles,
                          const Camera& camera, bool with_folds,
                          std::shared_ptr<const EdgeNeighbours> neighbours)
@@ -35,11 +63,10 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
     pixel_[v] = camera_.project(vertex_[v]);
     ahead[v] = (vertex_[v] - camera_.eye).dot(camera_.forward) > 1e-3;
   }
-  // Per triangle its pixel box, which also makes the surface's, and its reach.
-  constexpr double kMargin = 1e-4;  // pixels
+  // Per triangle its pixel box, which also makes the surface's, its reach and its edges.
   box_.setEmpty();
-  std::vector<std::array<double, 4>> bounds(count);  // x0, y0, x1, y1
-  reach_.resize(count);
+  std::vector<std::array<double, 4>> bounds(count), reach(count);  // x0, y0, x1, y1
+  edge_.assign(count, {});
   for (size_t t = 0; t < count; ++t) {
     const Eigen::Vector3i& c = triangle_[t];
     Eigen::AlignedBox2d box;
@@ -47,10 +74,12 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
     box_.extend(box);
     const std::array<double, 4> b = {box.min().x(), box.min().y(), box.max().x(), box.max().y()};
     bounds[t] = b;
-    reach_[t] =
-        ahead[size_t(c[0])] && ahead[size_t(c[1])] && ahead[size_t(c[2])]
-            ? std::array<double, 4>{b[0] - kMargin, b[1] - kMargin, b[2] + kMargin, b[3] + kMargin}
-            : std::array<double, 4>{-INFINITY, -INFINITY, INFINITY, INFINITY};
+    const bool in_front = ahead[size_t(c[0])] && ahead[size_t(c[1])] && ahead[size_t(c[2])];
+    reach[t] = in_front ? std::array<double, 4>{b[0] - kMargin, b[1] - kMargin, b[2] + kMargin,
+                                                b[3] + kMargin}
+                        : std::array<double, 4>{-INFINITY, -INFINITY, INFINITY, INFINITY};
+    if (in_front)
+      edge_[t] = edge_lines(pixel_[size_t(c[0])], pixel_[size_t(c[1])], pixel_[size_t(c[2])]);
   }
   cells_ = std::clamp(int(std::sqrt(double(count))), 1, 64);
   first_.assign(size_t(cells_) * cells_ + 1, 0);
@@ -72,7 +101,8 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
   for (size_t t = 0; t < count; ++t)
     for (int y = range[t][1]; y <= range[t][3]; ++y)
       for (int x = range[t][0]; x <= range[t][2]; ++x)
-        binned_[size_t(fill[size_t(y) * cells_ + x]++)] = int(t);
+        binned_[size_t(fill[size_t(y) * cells_ + x]++)] = {reach[t][0], reach[t][1], reach[t][2],
+                                                           reach[t][3], int(t)};
 }
 
 EdgeNeighbours edge_neighbours(const std::vector<Vector3d>& vertices,
@@ -170,9 +200,14 @@ std::pair<int, double> SurfaceRays::first_hit(const Vector2d& p) const {
   int hit = -1;
   const size_t c = size_t(cell_y(p.y())) * cells_ + cell_x(p.x());
   for (int k = first_[c]; k < first_[c + 1]; ++k) {
-    const int t = binned_[size_t(k)];
-    const std::array<double, 4>& r = reach_[size_t(t)];
-    if (p.x() < r[0] || p.y() < r[1] || p.x() > r[2] || p.y() > r[3]) continue;
+    const Binned& r = binned_[size_t(k)];
+    if (p.x() < r.x0 || p.y() < r.y0 || p.x() > r.x1 || p.y() > r.y1) continue;
+    const int t = r.triangle;
+    const std::array<double, 9>& e = edge_[size_t(t)];
+    if (e[0] * p.x() + e[1] * p.y() + e[2] < -kMargin ||
+        e[3] * p.x() + e[4] * p.y() + e[5] < -kMargin ||
+        e[6] * p.x() + e[7] * p.y() + e[8] < -kMargin)
+      continue;
     const double d = ray_triangle(camera_.eye, dir, corner(t, 0), corner(t, 1), corner(t, 2));
     if (d > 0 && d < best) best = d, hit = t;
   }
@@ -232,7 +267,7 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x)
       for (int k = first_[size_t(y) * cells_ + x]; k < first_[size_t(y) * cells_ + x + 1]; ++k)
-        for (int t = binned_[size_t(k)], e = 0; e < 3; ++e)
+        for (int t = binned_[size_t(k)].triangle, e = 0; e < 3; ++e)
           if (fold_[t][e] && meets(corner_pixel(t, e), corner_pixel(t, (e + 1) % 3), box))
             return INFINITY;
   // The layer hit first through the centre covers the box: its triangles meeting the box, found

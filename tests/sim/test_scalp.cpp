@@ -8,6 +8,7 @@
 
 #include "sim/body.hpp"
 #include "sim/hair_model.hpp"
+#include "sim/ray_triangle.hpp"
 #include "sim/scalp.hpp"
 
 using namespace wisp::sim;
@@ -122,6 +123,54 @@ TEST_CASE("eye rays against triangles meet the head where the analytic ellipsoid
   // A corner that is not a vertex is refused.
   CHECK_THROWS_AS(SurfaceRays({Vector3d::Zero()}, {Eigen::Vector3i(0, 1, 2)}, camera),
                   std::invalid_argument);
+}
+
+TEST_CASE("eye rays find the nearest of all triangles, on edges and corners too", "[sim][scalp]") {
+  // The grid and each triangle's box and projected edges only skip triangles a ray cannot hit:
+  // every answer is the one all triangles give, also where the ray passes next to a projected
+  // corner or edge of the mesh (where a skip that is off by its margin would show).
+  HeadGeometry head;
+  const BodyModel model = head_model(head, 24, 12);
+  const Camera camera = square_camera(160);
+  HeadPose pose;
+  pose.rotation = Eigen::AngleAxisd(0.4, Vector3d(0.3, 1, 0.2).normalized());
+  const BodySurface s = model.head_surface(pose);
+  const SurfaceRays rays(s.vertices, s.triangles, camera);
+  const auto all_triangles = [&](const Vector2d& p) {
+    double best = INFINITY;
+    for (const Eigen::Vector3i& t : s.triangles) {
+      const double h = ray_triangle(camera.eye, rays.ray(p), s.vertices[size_t(t[0])],
+                                    s.vertices[size_t(t[1])], s.vertices[size_t(t[2])]);
+      if (h > 0) best = std::min(best, h);
+    }
+    return best;
+  };
+  std::vector<Vector2d> points;
+  for (const Eigen::Vector3i& t : s.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const Vector2d a = rays.pixels()[size_t(t[c])], b = rays.pixels()[size_t(t[(c + 1) % 3])];
+      // A millionth of a pixel around the corner and the edge's middle: through one triangle
+      // or another, not through the corner or edge itself, where the 3D test's answer is
+      // rounding's and two builds of it may differ.
+      for (const Vector2d& o :
+           {Vector2d(1e-6, 3e-7), Vector2d(-4e-7, 1e-6), Vector2d(-1e-6, -5e-7)})
+        points.insert(points.end(), {a + o, 0.5 * (a + b) + o});
+    }
+  for (int y = 0; y < 160; y += 3)
+    for (int x = 0; x < 160; x += 3) points.emplace_back(x + 0.37, y + 0.61);
+  int hits = 0;
+  for (const Vector2d& p : points) {
+    const double expected = all_triangles(p);
+    hits += std::isfinite(expected);
+    INFO("pixel " << p.transpose());
+    // The same triangle, up to how each build of the inline 3D test rounds.
+    const double depth = rays.depth(p);
+    if (std::isinf(expected))
+      CHECK(std::isinf(depth));
+    else
+      CHECK(depth == Approx(expected).epsilon(1e-12));
+  }
+  CHECK(hits > 1000);
 }
 
 TEST_CASE("the scalp seen through a camera: crown inside, face outside, hidden by the head",
