@@ -54,6 +54,20 @@ struct Polygon {
   void push_back(const Corner& c) { corner[size++] = c; }
 };
 
+// Loops of corner indices, one after another in one array (a surface has tens of thousands of
+// pieces: a vector each was most of their cost).
+struct Loops {
+  std::vector<int> first{0};  // loop i is corner[first[i]] .. corner[first[i + 1] - 1]
+  std::vector<int> corner;
+
+  int size() const { return int(first.size()) - 1; }
+  template <class Each>
+  void for_each_edge(int i, Each&& each) const {  // each(a, b) for every edge a -> b of loop i
+    const int b = first[size_t(i)], e = first[size_t(i) + 1];
+    for (int k = b; k < e; ++k) each(corner[size_t(k)], corner[size_t(k + 1 < e ? k + 1 : b)]);
+  }
+};
+
 // The pieces of one surface in the image orientation of front faces, as loops of corner indices
 // (corners shared by identity): lit (terminator >= 0), band (between the terminator and the
 // offset), deep (shadow beyond the offset).
@@ -93,7 +107,7 @@ class Pieces {
   std::vector<Vector2d> point;
   std::vector<int> on;  // per corner: the levels it lies on (bits)
   std::vector<Key> key;
-  std::vector<std::vector<int>> lit, band, deep;
+  Loops lit, band, deep;
 
  private:
   const sim::ProjectedSurface& s_;
@@ -168,11 +182,18 @@ class Pieces {
     return out;
   }
 
-  void keep(const Polygon& piece, std::vector<std::vector<int>>& out) {
+  void keep(const Polygon& piece, Loops& out) {
     if (piece.size < 3) return;
-    std::vector<int> loop(piece.size);
-    for (int i = 0; i < piece.size; ++i) loop[i] = index(piece.corner[i].key);
-    out.push_back(std::move(loop));
+    for (int i = 0; i < piece.size; ++i) out.corner.push_back(index(piece.corner[i].key));
+    out.first.push_back(int(out.corner.size()));
+  }
+
+  // +1 when the triangle's corners are all on or above level l, -1 when all below, else 0: a
+  // corner's side, side() at its barycentric unit vector, is its value's sign.
+  int one_side(int l) const {
+    const Eigen::Vector3i& t = corners();
+    const bool a = g_[l][t[0]] >= 0, b = g_[l][t[1]] >= 0, c = g_[l][t[2]] >= 0;
+    return a == b && b == c ? (a ? 1 : -1) : 0;
   }
 
   void split(int t) {
@@ -183,6 +204,21 @@ class Pieces {
       Corner c{Key{tri[k], -1, 0}, 0, Vector3d::Unit(k)};
       id(c, s_.pixel[tri[k]]);
       poly.push_back(c);
+    }
+    // Most triangles lie wholly on one side of each level: the clips below would keep them whole
+    // in one set, or drop them, with no crossing.
+    const int cut = one_side(kCut);
+    if (cut < 0) return;
+    if (cut > 0) {
+      const int terminator = one_side(kTerminator), offset = one_side(kOffset);
+      Loops* whole = terminator > 0                 ? &lit
+                     : terminator < 0 && offset > 0 ? &band
+                     : terminator < 0 && offset < 0 ? &deep
+                                                    : nullptr;
+      if (whole) {
+        keep(poly, *whole);
+        return;
+      }
     }
     poly = clip(poly, kCut, 1);
     if (poly.size < 3) return;
@@ -198,20 +234,18 @@ class Pieces {
 // piece traverses the other way, chained into loops of corner indices (`corners` of them). Each
 // loop starts at the lowest corner with an edge left and, where a corner has several, follows
 // the one to the lowest corner first.
-std::vector<std::vector<int>> outline(const std::vector<const std::vector<std::vector<int>>*>& sets,
-                                      int corners) {
+std::vector<std::vector<int>> outline(const std::vector<const Loops*>& sets, int corners) {
   // Each edge {lo, hi} once with its net uses (+1 per traversal from lo, -1 per one from hi),
   // in buckets by lo.
   struct Use {
     int hi, net;
   };
   vector::Buckets<Use> uses = vector::bucket<Use>(corners, [&](const auto& put) {
-    for (const auto* set : sets)
-      for (const std::vector<int>& piece : *set)
-        for (std::size_t i = 0; i < piece.size(); ++i) {
-          const int a = piece[i], b = piece[(i + 1) % piece.size()];
+    for (const Loops* set : sets)
+      for (int i = 0; i < set->size(); ++i)
+        set->for_each_edge(i, [&](int a, int b) {
           if (a != b) put(std::min(a, b), Use{std::max(a, b), a < b ? 1 : -1});
-        }
+        });
   });
   // The edges left, directed the way their net uses go.
   struct Edge {
