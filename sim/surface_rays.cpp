@@ -63,23 +63,20 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
     pixel_[v] = camera_.project(vertex_[v]);
     ahead[v] = (vertex_[v] - camera_.eye).dot(camera_.forward) > 1e-3;
   }
-  // Per triangle its pixel box, which also makes the surface's, its reach and its edges.
+  // Per triangle its pixel box, which also makes the surface's, and its edges.
   box_.setEmpty();
-  std::vector<std::array<double, 4>> bounds(count), reach(count);  // x0, y0, x1, y1
-  edge_.assign(count, {});
+  std::vector<std::array<double, 4>> bounds(count);  // x0, y0, x1, y1
+  edge_.resize(count);
   for (size_t t = 0; t < count; ++t) {
     const Eigen::Vector3i& c = triangle_[t];
     Eigen::AlignedBox2d box;
     for (int k = 0; k < 3; ++k) box.extend(pixel_[size_t(c[k])]);
     box_.extend(box);
-    const std::array<double, 4> b = {box.min().x(), box.min().y(), box.max().x(), box.max().y()};
-    bounds[t] = b;
+    bounds[t] = {box.min().x(), box.min().y(), box.max().x(), box.max().y()};
     const bool in_front = ahead[size_t(c[0])] && ahead[size_t(c[1])] && ahead[size_t(c[2])];
-    reach[t] = in_front ? std::array<double, 4>{b[0] - kMargin, b[1] - kMargin, b[2] + kMargin,
-                                                b[3] + kMargin}
-                        : std::array<double, 4>{-INFINITY, -INFINITY, INFINITY, INFINITY};
-    if (in_front)
-      edge_[t] = edge_lines(pixel_[size_t(c[0])], pixel_[size_t(c[1])], pixel_[size_t(c[2])]);
+    edge_[t] = in_front
+                   ? edge_lines(pixel_[size_t(c[0])], pixel_[size_t(c[1])], pixel_[size_t(c[2])])
+                   : std::array<double, 9>{};
   }
   cells_ = std::clamp(int(std::sqrt(double(count))), 1, 64);
   first_.assign(size_t(cells_) * cells_ + 1, 0);
@@ -101,8 +98,7 @@ SurfaceRays::SurfaceRays(std::vector<Vector3d> vertices, std::vector<Eigen::Vect
   for (size_t t = 0; t < count; ++t)
     for (int y = range[t][1]; y <= range[t][3]; ++y)
       for (int x = range[t][0]; x <= range[t][2]; ++x)
-        binned_[size_t(fill[size_t(y) * cells_ + x]++)] = {reach[t][0], reach[t][1], reach[t][2],
-                                                           reach[t][3], int(t)};
+        binned_[size_t(fill[size_t(y) * cells_ + x]++)] = int(t);
 }
 
 EdgeNeighbours edge_neighbours(const std::vector<Vector3d>& vertices,
@@ -200,9 +196,7 @@ std::pair<int, double> SurfaceRays::first_hit(const Vector2d& p) const {
   int hit = -1;
   const size_t c = size_t(cell_y(p.y())) * cells_ + cell_x(p.x());
   for (int k = first_[c]; k < first_[c + 1]; ++k) {
-    const Binned& r = binned_[size_t(k)];
-    if (p.x() < r.x0 || p.y() < r.y0 || p.x() > r.x1 || p.y() > r.y1) continue;
-    const int t = r.triangle;
+    const int t = binned_[size_t(k)];
     const std::array<double, 9>& e = edge_[size_t(t)];
     if (e[0] * p.x() + e[1] * p.y() + e[2] < -kMargin ||
         e[3] * p.x() + e[4] * p.y() + e[5] < -kMargin ||
@@ -267,7 +261,7 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x)
       for (int k = first_[size_t(y) * cells_ + x]; k < first_[size_t(y) * cells_ + x + 1]; ++k)
-        for (int t = binned_[size_t(k)].triangle, e = 0; e < 3; ++e)
+        for (int t = binned_[size_t(k)], e = 0; e < 3; ++e)
           if (fold_[t][e] && meets(corner_pixel(t, e), corner_pixel(t, (e + 1) % 3), box))
             return INFINITY;
   // The layer hit first through the centre covers the box: its triangles meeting the box, found

@@ -75,23 +75,17 @@ class SurfaceRays {
   // the coordinate as a division: a point in a triangle's box lies in a cell it was binned in.
   double scale_x_ = 0, scale_y_ = 0;
   // The triangles meeting each cell of the grid, in order: cell c's are binned_[first_[c]] to
-  // binned_[first_[c + 1]] (one array, not a vector per cell). Each entry carries its triangle's
-  // reach: its projected box grown by a margin far above rounding (empty-handed rays skip the 3D
-  // test), or an unbounded box when a corner lies behind the eye (where the projection does not
-  // hold). A ray reads its cell's entries in order: kept beside the index, the boxes were a load
-  // from elsewhere for every one of the 20 or so a ray checks.
-  struct Binned {
-    double x0, y0, x1, y1;
-    int triangle;
-  };
-  std::vector<int> first_;
-  std::vector<Binned> binned_;
+  // binned_[first_[c + 1]] (one array, not a vector per cell).
+  std::vector<int> first_, binned_;
   // Per triangle, its projected edges as lines n.p + c with n a unit normal pointing inwards
   // (nx, ny, c per edge): a ray through p can hit the triangle only where every line is at least
-  // -margin. Nine zeros (no test) for a triangle seen nearly edge-on, where the 3D test's
-  // rounding is not bounded by the margin, or reaching behind the eye. Within the reach box a
-  // query meets about eight triangles' boxes but one or two triangles (profile: 78 000 rays a
-  // 512^2 frame of the default scene); the 3D test is several times this one's cost.
+  // -margin, a margin far above rounding. Nine zeros (every ray is tested in 3D) for a triangle
+  // seen nearly edge-on, where the 3D test's rounding is not bounded by the margin, or reaching
+  // behind the eye, where the projection does not hold. A ray's cell holds about twenty
+  // triangles but one or two that the ray meets (profile: 78 000 rays a 512^2 frame of the
+  // default scene); the 3D test is several times this one's cost. Tested alone, without the
+  // triangles' boxes: with them a cell's entries were five times the size, and building them
+  // cost what the rays gained.
   std::vector<std::array<double, 9>> edge_;
   bool with_folds_ = false;
   // Filled once, by the first max_depth (which may be called from several threads).
