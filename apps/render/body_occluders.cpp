@@ -14,16 +14,50 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
+double cross(const Vector2d& o, const Vector2d& a, const Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+// Leaves out the points well inside the polygon of the extreme points in eight directions (Akl
+// and Toussaint): none is a corner of the hull, and a surface's thousands of vertices come down
+// to the few near its outline before the hull's sort.
+void drop_inner(std::vector<Vector2d>& p) {
+  if (p.size() < 16) return;
+  // Extreme in x, x + y, y, y - x, -x, ..., counter-clockwise (the order of their directions).
+  const double dx[8] = {1, 1, 0, -1, -1, -1, 0, 1}, dy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+  Vector2d extreme[8];
+  double best[8];
+  for (int k = 0; k < 8; ++k) best[k] = -INFINITY;
+  Eigen::AlignedBox2d box;
+  for (const Vector2d& q : p) {
+    box.extend(q);
+    for (int k = 0; k < 8; ++k)
+      if (const double v = dx[k] * q.x() + dy[k] * q.y(); v > best[k]) best[k] = v, extreme[k] = q;
+  }
+  std::vector<Vector2d> ring;
+  for (const Vector2d& q : extreme)
+    if (ring.empty() || (q != ring.back() && q != ring.front())) ring.push_back(q);
+  if (ring.size() < 3) return;
+  // Inside every edge by far more than the rounding of the cross products.
+  const double margin = 1e-9 * box.sizes().squaredNorm();
+  p.erase(std::remove_if(p.begin(), p.end(),
+                         [&](const Vector2d& q) {
+                           for (size_t k = 0; k < ring.size(); ++k)
+                             if (!(cross(ring[k], ring[(k + 1) % ring.size()], q) > margin))
+                               return false;
+                           return true;
+                         }),
+          p.end());
+}
+
 // Convex hull (Andrew's monotone chain), counter-clockwise in (x, y).
 std::vector<Vector2d> convex_hull(std::vector<Vector2d> p) {
+  drop_inner(p);
   std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
     return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
   });
   p.erase(std::unique(p.begin(), p.end()), p.end());
   if (p.size() < 3) return p;
-  const auto cross = [](const Vector2d& o, const Vector2d& a, const Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
   std::vector<Vector2d> h(2 * p.size());
   size_t k = 0;
   for (size_t i = 0; i < p.size(); ++i) {
