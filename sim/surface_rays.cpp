@@ -168,6 +168,12 @@ void SurfaceRays::find_folds() const {
       const bool fold = !(apex_side(u0, u0) * apex_side(u0, u1) < 0);
       fold_[size_t(t)][size_t(e)] = fold_[size_t(u1 / 3)][size_t(u1 % 3)] = fold;
     }
+  fold_cell_.assign(first_.size() - 1, 0);
+  for (size_t c = 0; c + 1 < first_.size(); ++c)
+    for (int k = first_[c]; k < first_[c + 1] && !fold_cell_[c]; ++k) {
+      const std::array<bool, 3>& f = fold_[size_t(binned_[size_t(k)])];
+      fold_cell_[c] = f[0] || f[1] || f[2];
+    }
 }
 
 int SurfaceRays::cell_x(double x) const {
@@ -259,11 +265,14 @@ double SurfaceRays::max_depth(const Eigen::AlignedBox2d& box) const {
   const int x0 = cell_x(box.min().x()), x1 = cell_x(box.max().x());
   const int y0 = cell_y(box.min().y()), y1 = cell_y(box.max().y());
   for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x)
-      for (int k = first_[size_t(y) * cells_ + x]; k < first_[size_t(y) * cells_ + x + 1]; ++k)
+    for (int x = x0; x <= x1; ++x) {
+      const size_t cell = size_t(y) * cells_ + x;
+      if (!fold_cell_[cell]) continue;
+      for (int k = first_[cell]; k < first_[cell + 1]; ++k)
         for (int t = binned_[size_t(k)], e = 0; e < 3; ++e)
           if (fold_[t][e] && meets(corner_pixel(t, e), corner_pixel(t, (e + 1) % 3), box))
             return INFINITY;
+    }
   // The layer hit first through the centre covers the box: its triangles meeting the box, found
   // across shared edges from the centre's, bound the depth (the nearest hit is no farther).
   std::vector<int> layer = {start}, seen = {start};

@@ -91,6 +91,7 @@ class SurfaceRays {
   // Filled once, by the first max_depth (which may be called from several threads).
   mutable std::once_flag folds_found_;
   mutable std::vector<std::array<bool, 3>> fold_;  // per triangle edge (corner e to e + 1): a fold
+  mutable std::vector<char> fold_cell_;            // per cell: a triangle with a fold meets it
   mutable std::shared_ptr<const EdgeNeighbours> neighbour_;
 };
 
