@@ -362,6 +362,15 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
     if (!m->triangles.empty())
       m->neighbours =
           std::make_shared<const EdgeNeighbours>(edge_neighbours(m->vertices, m->triangles));
+  if (b.neck) {
+    const SweepShape& s = shape_.shape(BodyShape::kNeck);
+    const double rest = (b.neck_top - b.neck_bottom).norm();
+    std::vector<Vector3d> at_rest;
+    for (std::size_t i = 0; i < neck_.t.size(); ++i)
+      at_rest.push_back(s.point(neck_.t[i], neck_.theta[i], rest));
+    neck_neighbours_ =
+        std::make_shared<const EdgeNeighbours>(edge_neighbours(at_rest, neck_.triangles));
+  }
 }
 
 BodySurface BodyModel::placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
@@ -410,6 +419,7 @@ std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3
       m.normals.push_back(s.normal(neck_.t[i], neck_.theta[i], at.length));
     }
     m.triangles = neck_.triangles;
+    m.neighbours = neck_neighbours_;
     out.push_back(placed(kBodyNeck, BodyShape::kNeck, m, at.frame));
   }
   if (b.head) out.push_back(head_surface(pose));

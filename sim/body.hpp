@@ -212,6 +212,9 @@ class BodyModel {
   Mesh head_;              // head-local
   Mesh torso_, arm_plus_;  // sweep-local (the other arm uses the same local mesh)
   SweepMesh neck_;         // rebuilt per frame from (t, theta): its length follows the pose
+  // The neck's edge neighbours, from its mesh at rest length: its vertices are the same (t,
+  // theta) at every length.
+  std::shared_ptr<const EdgeNeighbours> neck_neighbours_;
   std::vector<FaceLine> face_;
 };
 

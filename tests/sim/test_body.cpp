@@ -584,3 +584,20 @@ TEST_CASE("the face turns with the head: the eyes move the way it turns and hide
   for (const FaceStroke& s : cut) mouth_runs += s.feature == Feature::Mouth;
   CHECK(mouth_runs == 4);  // the mouth and the lower lip, each cut in two
 }
+
+TEST_CASE("each posed surface's edge neighbours, found once per mesh, are its own", "[sim][body]") {
+  // Found from the rest mesh (the neck's at its rest length), they must be those found from the
+  // posed vertices, or the occluders' depth bound would see folds where there are none.
+  const BodyModel model(HeadGeometry{}, body_params(HeadParams{}));
+  for (const Vector3d& ypr : {Vector3d(0, 0, 0), Vector3d(35, -20, 10), Vector3d(-50, 30, -15)}) {
+    HeadPose pose;
+    pose.position = Vector3d(0.01, -0.02, 0.015);
+    pose.rotation = rotation_from_ypr(ypr);
+    const std::vector<BodySurface> surfaces = model.surfaces(pose, Vector3d(0.3, 0.1, 1.2));
+    REQUIRE(surfaces.size() >= 4);  // arms, torso, neck, head
+    for (const BodySurface& s : surfaces) {
+      REQUIRE(s.neighbours);
+      CHECK(*s.neighbours == edge_neighbours(s.vertices, s.triangles));
+    }
+  }
+}
