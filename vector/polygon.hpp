@@ -8,6 +8,8 @@
 #include <cmath>
 #include <vector>
 
+#include "vector/buckets.hpp"
+
 namespace wisp::vector {
 
 // Whether p is inside the ring by the even-odd rule (a ray towards +x crosses it an odd number
@@ -43,26 +45,27 @@ void fill_centres(std::vector<T>& pixels, int width, int height,
       y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
   const int row0 = std::max(0, int(std::floor(y_min))), row1 = std::min(height, int(y_max) + 1);
   // Each edge (its end points) in the bucket of the first row it may cross; an edge with an end
-  // that is not a number in every row, as the test below would see it.
+  // that is not a number from the first row on, to be tested as before at every row.
   struct Edge {
     const Eigen::Vector2d *a, *b;
     double top;  // the larger y: the edge crosses no row centre from there on
   };
-  std::vector<std::vector<Edge>> starting(size_t(std::max(0, row1 - row0)) + 1);
-  for (const auto& r : rings)
-    for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-      const double lo = std::min(r[i].y(), r[j].y()), hi = std::max(r[i].y(), r[j].y());
-      const bool finite = std::isfinite(lo) && std::isfinite(hi);
-      if (finite && (hi < row0 || lo >= row1)) continue;
-      const int first = finite ? std::clamp(int(std::floor(lo)) - 1, row0, row1) : row0;
-      starting[size_t(first - row0)].push_back({&r[i], &r[j], finite ? hi : INFINITY});
-    }
+  const Buckets<Edge> starting = bucket<Edge>(std::max(0, row1 - row0) + 1, [&](const auto& put) {
+    for (const auto& r : rings)
+      for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+        const double lo = std::min(r[i].y(), r[j].y()), hi = std::max(r[i].y(), r[j].y());
+        const bool finite = std::isfinite(lo) && std::isfinite(hi);
+        if (finite && (hi < row0 || lo >= row1)) continue;
+        const int first = finite ? std::clamp(int(std::floor(lo)) - 1, row0, row1) : row0;
+        put(first - row0, Edge{&r[i], &r[j], finite ? hi : INFINITY});
+      }
+  });
   std::vector<Edge> active;
   std::vector<double> xs;
   for (int y = row0; y < row1; ++y) {
     const double yc = y + 0.5;
-    const std::vector<Edge>& add = starting[size_t(y - row0)];
-    active.insert(active.end(), add.begin(), add.end());
+    active.insert(active.end(), starting.items.begin() + starting.begin[size_t(y - row0)],
+                  starting.items.begin() + starting.begin[size_t(y - row0) + 1]);
     active.erase(
         std::remove_if(active.begin(), active.end(), [&](const Edge& e) { return e.top < yc - 1; }),
         active.end());
