@@ -809,104 +809,133 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   // The fine points of each parity of x: x = 2I + parity < F.w.
   const int columns[2] = {(F.w + 1) / 2, F.w / 2};
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
-    // The coarse rows with a point to compute, and the columns [i_lo, i_hi) that hold them.
-    std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0);
-    int i_lo = C.w, i_hi = 0;
+    // The columns with a point to compute in any of the task's rows.
+    std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0), column_wanted(size_t(C.w), 0);
     for (int J = J0; J < J1; ++J)
       for (int I = 0; I < C.w; ++I)
-        if (computed(I, J)) {
-          row_wanted[J - J0] = 1;
-          i_lo = std::min(i_lo, I);
-          i_hi = std::max(i_hi, I + 1);
-        }
-    if (i_lo >= i_hi) return;
+        if (computed(I, J)) column_wanted[I] = 1;
     // Rows of A P of fine rows y_first .. y_first + y_count - 1 (those within 1 of a wanted coarse
-    // row), lanes i_lo - 1 .. i_hi - 1 of each parity: all that the coarse points read.
+    // row), each parity's lanes as columns.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
     const size_t row_floats = size_t(2) * 9 * lanes;
-    const std::unique_ptr<float[]> ap(new float[size_t(y_count) * row_floats]);
-    const std::unique_ptr<float[]> coeff(new float[size_t(9) * lanes]);
+    std::unique_ptr<float[]> ap, coeff;
     const auto ap_at = [&](int y, int parity) {
       return &ap[size_t(y - y_first) * row_floats + size_t(parity) * 9 * lanes];
     };
-    const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
-    ApInputs in{coeff.get(),  lanes,        P.x0.data(),  P.x1.data(),  P.y0.data(),   P.y1.data(),
+    ApInputs in{nullptr,      lanes,        P.x0.data(),  P.x1.data(),  P.y0.data(),   P.y1.data(),
                 P.c00.data(), P.c10.data(), P.c01.data(), P.c11.data(), F.alive.data()};
-    for (int y = y_first; y < y_first + y_count; ++y) {
-      const int J = y >> 1;  // the wanted rows that read fine row y: J and, for odd y, J + 1
-      const bool read = (J >= J0 && row_wanted[J - J0]) ||
-                        ((y & 1) && J + 1 < J1 && J + 1 >= J0 && row_wanted[J + 1 - J0]);
-      if (!read) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        in.cell_row[dy + 1] = C.at(0, (y + dy) >> 1);
-        in.fine_row[dy + 1] = F.at(0, y + dy);
+    // The wanted points of the columns [i_lo, i_hi), from the lanes i_lo - 1 .. i_hi - 1 of A P:
+    // all that those coarse points read. Each lane's values are its own (no lane reads another's),
+    // so computing some columns gives each the bits that computing all of them gives.
+    const auto compute_columns = [&](int i_lo, int i_hi) {
+      if (!ap) {
+        ap.reset(new float[size_t(y_count) * row_floats]);
+        coeff.reset(new float[size_t(9) * lanes]);
+        in.coeff = coeff.get();
       }
-      for (int parity = 0; parity < 2; ++parity) {
-        float* out = ap_at(y, parity);
-        // Columns outside the level, and rows outside it, are rows of zeros.
-        const int b_lo = std::max(a_lo, 0);
-        const int b_hi = y < 0 || y >= F.h ? b_lo : std::min(a_hi, columns[parity]);
-        const auto clear = [&](int from, int to) {
-          for (int I = from; I < to; ++I)
-            for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
-        };
-        clear(a_lo, b_lo);
-        clear(std::max(b_hi, b_lo), a_hi);
-        if (b_lo >= b_hi) continue;
-        (parity ? ap_coefficients<1> : ap_coefficients<0>)(F, y, b_lo, b_hi, coeff.get(), lanes);
-        kApRows[parity | (y & 1) << 1 | F.nine_point << 2](in, b_lo, b_hi, out);
+      const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
+      // The task's rows with a point to compute in these columns.
+      for (int J = J0; J < J1; ++J) {
+        row_wanted[J - J0] = 0;
+        for (int I = i_lo; I < i_hi && !row_wanted[J - J0]; ++I)
+          row_wanted[J - J0] = computed(I, J);
       }
-    }
-    // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
-    // points p around K of P(p, K) * (A P)(p, K + d), in double, lanes of one coarse row.
-    std::vector<double> sums(size_t(5) * lanes);
-    for (int J = J0; J < J1; ++J) {
-      if (!row_wanted[J - J0]) continue;
-      const size_t k0 = C.at(0, J);
-      // (A P) of fine point (2I + ox, 2J + oy), entry m: rows[oy + 1][ox + 1][m * lanes + I].
-      const float* rows[3][3];
-      for (int oy = -1; oy <= 1; ++oy) {
-        rows[oy + 1][0] = ap_at(2 * J + oy, 1);  // x = 2(I - 1) + 1: lane I - 1, at index I
-        rows[oy + 1][1] = ap_at(2 * J + oy, 0) + 1;
-        rows[oy + 1][2] = ap_at(2 * J + oy, 1) + 1;
-      }
-      double* s = sums.data();
-      for (int I = i_lo; I < i_hi; ++I) {
-        const size_t kc = k0 + I;
-        // Weight of K in the P row of fine point (2I+ox, 2J+oy).
-        const float weight[3][3] = {{in.c11[kc - cs - 1], in.y1[kc - cs], in.c01[kc - cs]},
-                                    {in.x1[kc - 1], 1.0f, in.x0[kc]},
-                                    {in.c10[kc - 1], in.y0[kc], in.c00[kc]}};
-        double acc[5] = {0, 0, 0, 0, 0};
-        constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
-#pragma GCC unroll 3
-        for (int oy = -1; oy <= 1; ++oy)
-#pragma GCC unroll 3
-          for (int ox = -1; ox <= 1; ++ox) {
-            const float wk = weight[oy + 1][ox + 1];
-            const float* row = rows[oy + 1][ox + 1] + I;
-            // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
-            const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
-#pragma GCC unroll 5
-            for (int m = 0; m < 5; ++m) {
-              const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
-              if (sx < 0 || sx > 2 || sy > 2) continue;
-              acc[m] += double(wk) * row[(sy * 3 + sx) * lanes];
-            }
-          }
-        for (int m = 0; m < 5; ++m) s[m * lanes + I] = acc[m];
-      }
-      for (int I = i_lo; I < i_hi; ++I) {
-        const size_t kc = k0 + I;
-        if (!computed(I, J)) continue;
-        if (!C.alive[kc]) {
-          if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
-          continue;
+      for (int y = y_first; y < y_first + y_count; ++y) {
+        const int J = y >> 1;  // the wanted rows that read fine row y: J and, for odd y, J + 1
+        const bool read = (J >= J0 && row_wanted[J - J0]) ||
+                          ((y & 1) && J + 1 < J1 && J + 1 >= J0 && row_wanted[J + 1 - J0]);
+        if (!read) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          in.cell_row[dy + 1] = C.at(0, (y + dy) >> 1);
+          in.fine_row[dy + 1] = F.at(0, y + dy);
         }
-        const double d = s[I];
-        store(kc, {float(d), d > 0 ? float(1.0 / d) : 0.0f, float(-s[lanes + I]),
-                   float(-s[2 * lanes + I]), float(-s[3 * lanes + I]), float(-s[4 * lanes + I])});
+        for (int parity = 0; parity < 2; ++parity) {
+          float* out = ap_at(y, parity);
+          // Columns outside the level, and rows outside it, are rows of zeros.
+          const int b_lo = std::max(a_lo, 0);
+          const int b_hi = y < 0 || y >= F.h ? b_lo : std::min(a_hi, columns[parity]);
+          const auto clear = [&](int from, int to) {
+            for (int I = from; I < to; ++I)
+              for (int m = 0; m < 9; ++m) out[m * lanes + I + 1] = 0.0f;
+          };
+          clear(a_lo, b_lo);
+          clear(std::max(b_hi, b_lo), a_hi);
+          if (b_lo >= b_hi) continue;
+          (parity ? ap_coefficients<1> : ap_coefficients<0>)(F, y, b_lo, b_hi, coeff.get(), lanes);
+          kApRows[parity | (y & 1) << 1 | F.nine_point << 2](in, b_lo, b_hi, out);
+        }
       }
+      // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
+      // points p around K of P(p, K) * (A P)(p, K + d), in double, lanes of one coarse row.
+      std::vector<double> sums(size_t(5) * lanes);
+      for (int J = J0; J < J1; ++J) {
+        if (!row_wanted[J - J0]) continue;
+        const size_t k0 = C.at(0, J);
+        // (A P) of fine point (2I + ox, 2J + oy), entry m: rows[oy + 1][ox + 1][m * lanes + I].
+        const float* rows[3][3];
+        for (int oy = -1; oy <= 1; ++oy) {
+          rows[oy + 1][0] = ap_at(2 * J + oy, 1);  // x = 2(I - 1) + 1: lane I - 1, at index I
+          rows[oy + 1][1] = ap_at(2 * J + oy, 0) + 1;
+          rows[oy + 1][2] = ap_at(2 * J + oy, 1) + 1;
+        }
+        double* s = sums.data();
+        for (int I = i_lo; I < i_hi; ++I) {
+          const size_t kc = k0 + I;
+          // Weight of K in the P row of fine point (2I+ox, 2J+oy).
+          const float weight[3][3] = {{in.c11[kc - cs - 1], in.y1[kc - cs], in.c01[kc - cs]},
+                                      {in.x1[kc - 1], 1.0f, in.x0[kc]},
+                                      {in.c10[kc - 1], in.y0[kc], in.c00[kc]}};
+          double acc[5] = {0, 0, 0, 0, 0};
+          constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
+#pragma GCC unroll 3
+          for (int oy = -1; oy <= 1; ++oy)
+#pragma GCC unroll 3
+            for (int ox = -1; ox <= 1; ++ox) {
+              const float wk = weight[oy + 1][ox + 1];
+              const float* row = rows[oy + 1][ox + 1] + I;
+              // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
+              const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
+#pragma GCC unroll 5
+              for (int m = 0; m < 5; ++m) {
+                const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
+                if (sx < 0 || sx > 2 || sy > 2) continue;
+                acc[m] += double(wk) * row[(sy * 3 + sx) * lanes];
+              }
+            }
+          for (int m = 0; m < 5; ++m) s[m * lanes + I] = acc[m];
+        }
+        for (int I = i_lo; I < i_hi; ++I) {
+          const size_t kc = k0 + I;
+          if (!computed(I, J)) continue;
+          if (!C.alive[kc]) {
+            if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
+            continue;
+          }
+          const double d = s[I];
+          store(kc, {float(d), d > 0 ? float(1.0 / d) : 0.0f, float(-s[lanes + I]),
+                     float(-s[2 * lanes + I]), float(-s[3 * lanes + I]), float(-s[4 * lanes + I])});
+        }
+      }
+    };
+    // Runs of wanted columns, each computed on its own: the points to compute lie near the
+    // curves, and one span from the first to the last of them computed most of a row for nothing.
+    // Runs closer than kJoin columns are one (a run's fixed cost is its two edge lanes, and the
+    // rows' set-up).
+    constexpr int kJoin = 8;
+    for (int I = 0; I < C.w;) {
+      if (!column_wanted[I]) {
+        ++I;
+        continue;
+      }
+      int end = I + 1, gap = 0;
+      for (int K = end; K < C.w && gap < kJoin; ++K) {
+        if (column_wanted[K])
+          end = K + 1, gap = 0;
+        else
+          ++gap;
+      }
+      compute_columns(I, end);
+      I = end;
     }
   });
   if (!plain.model) return changed;
