@@ -49,9 +49,14 @@ void for_rows(int rows, int row_length, const Body& body) {
                     [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
 }
 
+// A level's arrays: assign_touched fills them by the worker threads together
+// (fresh_memory.hpp), and nothing reads an element before a fill or a pass has written it.
+using Plane = UninitializedVector<float>;
+using Flags = UninitializedVector<std::uint8_t>;
+
 // v[i] = 0 for every i, by the worker threads together: a 1024^2 frame's correction is 12 MB,
 // about a millisecond of one thread's stores.
-void fill_zero(std::vector<float>& v) {
+void fill_zero(Plane& v) {
   constexpr size_t kFloatsPerTask = size_t(1) << 18;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, v.size(), kFloatsPerTask),
                     [&](const tbb::blocked_range<size_t>& r) {
@@ -100,20 +105,20 @@ struct Level {
   int w = 0, h = 0;  // interior size
   int stride = 0;    // w + 2
   bool nine_point = false;
-  std::vector<float> diag, inv_diag;    // inv_diag is 0 on fixed points: the smoother keeps e = 0
-  std::vector<float> ae, as, ase, asw;  // empty on the finest level (see code)
+  Plane diag, inv_diag;    // inv_diag is 0 on fixed points: the smoother keeps e = 0
+  Plane ae, as, ase, asw;  // empty on the finest level (see code)
   // The finest level's couplings are 0 or 1 (a link open between two free points, or not) and
   // its diagonal the count of open links, plus the anchor weight where there is one: `code` holds
   // them in a byte a point, which the cycles read instead of 16 bytes of floats. There diag and
   // inv_diag hold the diagonal only where a point is anchored (see diag_of()).
-  std::vector<std::uint8_t> code;
-  std::vector<std::uint8_t> alive;  // 1 on free points
+  Flags code;
+  Flags alive;  // 1 on free points
   // Coarse levels: 1 where the point's stored stencil is the level's plain one (see
   // PlainPoints), copied from the one point that computed it. Set by each setup.
-  std::vector<std::uint8_t> plain;
+  Flags plain;
   // Prolongation into this level from the next coarser one, stored per coarse cell on the coarse
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
-  std::vector<float> e, rhs;  // channel planes, padded
+  Plane e, rhs;  // channel planes, padded
 
   size_t padded() const { return size_t(stride) * size_t(h + 2); }
   size_t at(int x, int y) const { return size_t(y + 1) * stride + size_t(x + 1); }
@@ -124,7 +129,7 @@ struct Level {
 //   y0, y1: fine (2I, 2J+1) from coarse (I,J) and (I,J+1)
 //   c00, c10, c01, c11: fine (2I+1, 2J+1) from (I,J), (I+1,J), (I,J+1), (I+1,J+1)
 struct Prolongation {
-  std::vector<float> x0, x1, y0, y1, c00, c10, c01, c11;
+  Plane x0, x1, y0, y1, c00, c10, c01, c11;
 };
 
 // The arrays of a solve that outlive it: levels, prolongations and the fixed mask.
@@ -136,7 +141,7 @@ struct Workspace {
   std::vector<Level> levels;
   std::vector<Prolongation> prolong;  // prolong[l]: from level l+1 into level l
   std::vector<std::uint8_t> fixed;
-  std::vector<float> previous;
+  Plane previous;
   // The size of the problem whose operators `levels` and `prolong` hold; 0 when they hold none
   // (or a setup did not finish).
   int width = 0, height = 0;
@@ -193,8 +198,8 @@ std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
 // the last bit, so one of them, `model` (the first that is to be rebuilt), is computed and copied
 // to the others: most of an image is away from curves, on every level.
 struct PlainPoints {
-  std::vector<std::uint8_t> flags;  // per padded coarse point
-  std::optional<size_t> model;      // none when no plain point is to be rebuilt
+  Flags flags;                  // per padded coarse point
+  std::optional<size_t> model;  // none when no plain point is to be rebuilt
   // Whether point kc takes the model's values instead of computing its own.
   bool copied(size_t kc) const { return model && flags[kc] && kc != *model; }
 };
@@ -303,7 +308,7 @@ class Multigrid {
   std::vector<Prolongation>& prolong_;  // prolong_[l]: from level l+1 into level l
   std::array<double, NC> b_norm_{};     // scale of relative residuals (see relative())
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
-  std::vector<float>& previous_;        // the correction before a cycle (SolverOptions::max_error)
+  Plane& previous_;                     // the correction before a cycle (SolverOptions::max_error)
   bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
@@ -331,10 +336,10 @@ class Multigrid {
   void relax_row(Level& L, int y, int x_parity);
   // Both colours of row y of a 9-point level: parity `first`, then the other (see smooth()).
   void relax_row_pair(Level& L, int y, int first);
-  void residual_row(int l, int y, const std::vector<float>* b, const std::vector<float>& e,
-                    float* const out[NC], float* norms) const;
-  void residual_of(int l, const std::vector<float>* b, const std::vector<float>& e,
-                   std::vector<float>* out, std::vector<double>* row_norms = nullptr) const;
+  void residual_row(int l, int y, const Plane* b, const Plane& e, float* const out[NC],
+                    float* norms) const;
+  void residual_of(int l, const Plane* b, const Plane& e, Plane* out,
+                   std::vector<double>* row_norms = nullptr) const;
   std::array<double, NC> residual_norms(int l) const;
   std::array<double, NC> sum_row_norms(const std::vector<double>& rows, int h) const;
   // Row J of levels_[l+1].rhs = P^T r, from r on fine rows 2J-1, 2J, 2J+1 (per channel, each
@@ -350,14 +355,14 @@ class Multigrid {
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
   template <class T>
-  std::array<double, NC> residual_double(const std::vector<T>& u, std::vector<float>& r_padded,
+  std::array<double, NC> residual_double(const std::vector<T>& u, Plane& r_padded,
                                          std::array<double, NC>* b_norms = nullptr) const;
   double solve_correction(double rel, double tolerance, SolveStats& st);
-  double change_since(std::vector<float>& before) const;
-  float change_of_row(int y, std::vector<float>& before) const;
+  double change_since(Plane& before) const;
+  float change_of_row(int y, Plane& before) const;
   // Hands SolverOptions::observer the residual: `residual_padded`, or the finest level's.
-  void observe(const std::vector<float>* residual_padded, const SolveStats& st) const;
-  std::array<double, NC> dot(const std::vector<float>& a, const std::vector<float>& b) const;
+  void observe(const Plane* residual_padded, const SolveStats& st) const;
+  std::array<double, NC> dot(const Plane& a, const Plane& b) const;
 };
 
 // Pixels not connected through open links to any Dirichlet pixel are fixed to 0 (their value is
@@ -477,7 +482,7 @@ struct Stencil {
   float d, e, w, n, s, ne, nw, se, sw;
 };
 
-float coupling(const std::vector<float>& v, size_t k) {
+float coupling(const Plane& v, size_t k) {
   return v.empty() ? 0.0f : v[k];
 }
 
@@ -592,10 +597,10 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
         }
     });
   };
-  const auto copy_plain = [&](std::initializer_list<std::vector<float>*> weights) {
+  const auto copy_plain = [&](std::initializer_list<Plane*> weights) {
     if (!plain.model) return;
     for_rows(C.h, C.w, [&](int J0, int J1) {
-      for (std::vector<float>* v : weights) {
+      for (Plane* v : weights) {
         const float model = (*v)[*plain.model];
         for (size_t kc = C.at(0, J0); kc < C.at(0, J1); ++kc)
           if ((!rebuild || (*rebuild)[kc]) && plain.copied(kc)) (*v)[kc] = model;
@@ -804,7 +809,7 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   const auto wanted = [&](size_t kc) { return !rebuild || (*rebuild)[kc]; };
   // Stores a coarse point's stencil (rebuilt points: noting which changed).
   const auto store = [&](size_t kc, const float(&v)[6]) {
-    std::vector<float>* arrays[6] = {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw};
+    Plane* arrays[6] = {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw};
     bool c = false;
     for (int m = 0; m < 6; ++m) c |= update((*arrays[m])[kc], v[m]);
     if (rebuild) changed[kc] = c;
@@ -1119,7 +1124,7 @@ RowOperator row_operator(const Level& L, size_t row, bool inverse) {
   float *east = buffer.data(), *west = east + part, *south = west + part, *north = south + part,
         *d = north + part;
   const std::uint8_t* code = &L.code[row];
-  const std::vector<float>& stored = inverse ? L.inv_diag : L.diag;
+  const Plane& stored = inverse ? L.inv_diag : L.diag;
   const float* by_links = inverse ? kLinksInverse : kLinksDiag;
   for (int x = 0; x < L.w; ++x) {
     east[x] = code[x] & kCodeEast ? 1.0f : 0.0f;
@@ -1398,9 +1403,8 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
 // Row y of out = b - A e on level l (b == nullptr: out = -A e), every channel: out[c] points at
 // the row's first point. With `norms`, the squared 2-norm of each channel's row (in float).
 template <int NC>
-void Multigrid<NC>::residual_row(int l, int y, const std::vector<float>* b_planes,
-                                 const std::vector<float>& e_planes, float* const out[NC],
-                                 float* norms) const {
+void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plane& e_planes,
+                                 float* const out[NC], float* norms) const {
   const Level& L = levels_[l];
   const size_t n = L.padded(), row = L.at(0, y);
   const int w = L.w;
@@ -1456,8 +1460,7 @@ void Multigrid<NC>::residual_row(int l, int y, const std::vector<float>* b_plane
 // out = b - A e on level l (b == nullptr: out = -A e). Arrays are channel planes, padded. Without
 // `out` only the row norms are computed, a row at a time.
 template <int NC>
-void Multigrid<NC>::residual_of(int l, const std::vector<float>* b_planes,
-                                const std::vector<float>& e_planes, std::vector<float>* out,
+void Multigrid<NC>::residual_of(int l, const Plane* b_planes, const Plane& e_planes, Plane* out,
                                 std::vector<double>* row_norms) const {
   const Level& L = levels_[l];
   const size_t n = L.padded();
@@ -1516,10 +1519,8 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   for (int I = 0; I < C.w; I += 16) {
     const size_t kc = C.at(I, J);
     const __mmask16 in = lanes(C.w - I);
-    const auto load = [&](const std::vector<float>& v, size_t k) {
-      return _mm512_maskz_loadu_ps(in, &v[k]);
-    };
-    for (const std::vector<float>* q : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
+    const auto load = [&](const Plane& v, size_t k) { return _mm512_maskz_loadu_ps(in, &v[k]); };
+    for (const Plane* q : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
       prefetch(q->data(), kc + cs);  // the next coarse row's
     const __m512 x0 = load(P.x0, kc), x1 = load(P.x1, kc - 1), y0 = load(P.y0, kc),
                  y1 = load(P.y1, kc - cs), c00 = load(P.c00, kc), c10 = load(P.c10, kc - 1),
@@ -1582,11 +1583,11 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
   const int cs = C.stride, pairs = F.w / 2;
   const size_t row = C.at(0, y >> 1);  // coarse cell (I, J) at row + I
   // The weights that the fine row two below reads (the next coarse row's).
-  const auto ahead = [&](const std::vector<float>& v) {
+  const auto ahead = [&](const Plane& v) {
     for (int I = 0; I <= pairs; I += 16) prefetch(v.data(), row + cs + I);
   };
   if (y & 1) {
-    for (const std::vector<float>* v : {&P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11}) ahead(*v);
+    for (const Plane* v : {&P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11}) ahead(*v);
   } else {
     ahead(P.x0), ahead(P.x1);
   }
@@ -1690,8 +1691,7 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
 
 // Per-channel dot products on the finest level, summed row by row in a fixed order.
 template <int NC>
-std::array<double, NC> Multigrid<NC>::dot(const std::vector<float>& a,
-                                          const std::vector<float>& b) const {
+std::array<double, NC> Multigrid<NC>::dot(const Plane& a, const Plane& b) const {
   const Level& L = levels_[0];
   const size_t n = L.padded();
   std::vector<double> rows(size_t(L.h) * NC, 0.0);
@@ -1720,8 +1720,8 @@ template <int NC>
 double Multigrid<NC>::conjugate_gradient(double rel, double tolerance, SolveStats& st) {
   Level& L = levels_[0];
   const size_t n = L.padded();
-  const std::vector<float> r0 = L.rhs;  // the cycles below take the finest right-hand side
-  std::vector<float> x = L.e, r(r0.size()), p(r0.size(), 0.0f), q(r0.size());
+  const Plane r0 = L.rhs;  // the cycles below take the finest right-hand side
+  Plane x = L.e, r(r0.size(), 0.0f), p(r0.size(), 0.0f), q(r0.size(), 0.0f);
   residual_of(0, &r0, x, &r);
   std::array<double, NC> rz_old{};
   double last_true = rel;
@@ -1800,15 +1800,15 @@ double Multigrid<NC>::conjugate_gradient(double rel, double tolerance, SolveStat
 }
 
 template <int NC>
-void Multigrid<NC>::observe(const std::vector<float>* residual_padded, const SolveStats& st) const {
+void Multigrid<NC>::observe(const Plane* residual_padded, const SolveStats& st) const {
   if (!options_.observer) return;
   const Level& F = levels_[0];
-  std::vector<float> own;
+  Plane own;
   if (!residual_padded) {
     own.assign(F.padded() * NC, 0.0f);
     residual_of(0, &F.rhs, F.e, &own);
   }
-  const std::vector<float>& padded = residual_padded ? *residual_padded : own;
+  const Plane& padded = residual_padded ? *residual_padded : own;
   const size_t n = size_t(F.w) * F.h, nf = F.padded();
   std::vector<float> planes(n * NC);
   for (int c = 0; c < NC; ++c)
@@ -1872,13 +1872,13 @@ void Multigrid<NC>::setup() {
 // and, in b_norms, those of b.
 template <int NC>
 template <class T>
-std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
-                                                      std::vector<float>& r_padded,
+std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, Plane& r_padded,
                                                       std::array<double, NC>* b_norms) const {
   const Problem& p = problem_;
   const Level& F = levels_[0];
   const size_t np = p.pixel_count(), nf = F.padded();
-  r_padded.resize(nf * NC);  // ghost points stay 0; every interior point is written below
+  // Ghost points 0 (a Plane grows unwritten); every interior point is written below.
+  if (r_padded.size() != nf * NC) assign_touched(r_padded, nf * NC, 0.0f);
   std::vector<double> rows(size_t(p.height) * NC * 2, 0.0);
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
   // Eight pixels at a time: every test of the loop below a mask, each term added only where the
@@ -2008,7 +2008,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u,
 // `before` then holds the current correction. A maximum is exact in any order, so the result does
 // not depend on how rows are split.
 template <int NC>
-double Multigrid<NC>::change_since(std::vector<float>& before) const {
+double Multigrid<NC>::change_since(Plane& before) const {
   const Level& L = levels_[0];
   std::vector<float> rows(size_t(L.h), 0.0f);
   for_rows(L.h, L.w * NC, [&](int y0, int y1) {
@@ -2019,7 +2019,7 @@ double Multigrid<NC>::change_since(std::vector<float>& before) const {
 
 // change_since for row y of the finest level.
 template <int NC>
-float Multigrid<NC>::change_of_row(int y, std::vector<float>& before) const {
+float Multigrid<NC>::change_of_row(int y, Plane& before) const {
   const Level& L = levels_[0];
   const size_t n = L.padded();
   float m = 0;
@@ -2214,7 +2214,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   }
   std::vector<double> u64;
   // The residual of the initial guess is the finest level's right-hand side.
-  std::vector<float>& r = levels_[0].rhs;
+  Plane& r = levels_[0].rhs;
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
   b_norm_.fill(0.0);
   double rel;

@@ -47,3 +47,26 @@ TEST_CASE("storage a vector already has is reused", "[fresh_memory]") {
   reserve_touched(v, std::size_t(1) << 20);
   CHECK(v.data() == storage);
 }
+
+TEST_CASE("assign_touched fills an UninitializedVector whole, in every size it takes",
+          "[fresh_memory]") {
+  // The solver's arrays grow unwritten (UninitializedAllocator): every element they hold is the
+  // fill's. Sizes below one task, across several tasks and not a multiple of one; storage kept
+  // (smaller, then as large again) and replaced (larger), each time over other values.
+  UninitializedVector<float> v;
+  float value = 0.5f;
+  for (std::size_t n : {std::size_t(100), (std::size_t(3) << 20) + 7, std::size_t(1) << 20,
+                        (std::size_t(3) << 20) + 7, std::size_t(5) << 20}) {
+    const float* before = v.data();
+    const bool fits = v.capacity() >= n;
+    assign_touched(v, n, value);
+    REQUIRE(v.size() == n);
+    CHECK(std::all_of(v.begin(), v.end(), [&](float x) { return x == value; }));
+    if (fits) CHECK(v.data() == before);  // storage it has is reused
+    value += 1.0f;
+  }
+  UninitializedVector<std::uint8_t> bytes;
+  assign_touched(bytes, std::size_t(3) << 20, std::uint8_t(7));
+  assign_touched(bytes, (std::size_t(3) << 20) - 1, std::uint8_t(0));
+  CHECK(std::all_of(bytes.begin(), bytes.end(), [](std::uint8_t x) { return x == 0; }));
+}
