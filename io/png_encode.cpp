@@ -2,6 +2,7 @@
 #include "io/png_encode.hpp"
 
 #include <isa-l/igzip_lib.h>
+#include <tbb/parallel_for.h>
 #include <zlib.h>
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -36,63 +37,106 @@ void put_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], const std:
   put_u32(out, std::uint32_t(crc));
 }
 
-// The image's rows, each as PNG stores it: the filter type byte (2, Up) and the row minus the row
-// above (the first row is its own bytes: Up against a row of zeros), compressed as one zlib
-// stream, in blocks of rows so that the filtered image is never whole in memory.
-std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
+// Row y of the image as packed bytes (RGB from 0xXXRRGGBB words).
+void packed_row(const PixelRows& px, int y, std::uint8_t* row) {
+  const std::uint8_t* src = px.data + std::size_t(y) * px.stride;
+  if (!px.xrgb32) {
+    std::copy(src, src + std::size_t(px.width) * px.channels, row);
+    return;
+  }
+  for (int x = 0; x < px.width; ++x) {  // native-endian words 0xXXRRGGBB
+    std::uint32_t word;
+    std::memcpy(&word, src + 4 * std::size_t(x), 4);
+    row[3 * std::size_t(x)] = std::uint8_t(word >> 16);
+    row[3 * std::size_t(x) + 1] = std::uint8_t(word >> 8);
+    row[3 * std::size_t(x) + 2] = std::uint8_t(word);
+  }
+}
+
+// Rows y0 .. y1 - 1, each as PNG stores it: the filter type byte (2, Up) and the row minus the
+// row above (the first row of the image is its own bytes: Up against a row of zeros), deflated
+// (raw, no zlib wrapper) in blocks of rows so that the filtered rows are never whole in memory.
+// The last part of an image ends the deflate stream; the others end on a full flush (byte
+// aligned, no history), so that the parts, compressed apart, join into one stream. Returns the
+// bytes and, in `adler`, the Adler-32 of the filtered rows.
+std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool last,
+                                       std::uint32_t& adler) {
   const std::size_t row_bytes = std::size_t(px.width) * px.channels;
-  if ((row_bytes + 1) * std::size_t(px.height) >= 0xffffffffu)
-    throw std::runtime_error("PNG encoding failed: image too large");
   std::vector<std::uint8_t> level_buf(ISAL_DEF_LVL1_DEFAULT);
   isal_zstream z;
   isal_deflate_init(&z);
   z.level = 1;
   z.level_buf = level_buf.data();
   z.level_buf_size = std::uint32_t(level_buf.size());
-  z.gzip_flag = IGZIP_ZLIB;
-  z.flush = NO_FLUSH;
+  z.gzip_flag = IGZIP_DEFLATE;
   std::vector<std::uint8_t> out;
-  const auto deflate = [&](std::uint8_t* data, std::size_t n, bool last) {
+  adler = 1;  // Adler-32 of no bytes
+  const auto deflate = [&](std::uint8_t* data, std::size_t n, bool end) {
+    adler = isal_adler32(adler, data, n);
     z.next_in = data;
     z.avail_in = std::uint32_t(n);
-    z.end_of_stream = last ? 1 : 0;
+    z.end_of_stream = end && last ? 1 : 0;
+    z.flush = end && !last ? FULL_FLUSH : NO_FLUSH;
     do {
       if (out.size() - z.total_out < 65536)
         out.resize(std::max<std::size_t>(2 * out.size(), 65536));
       z.next_out = out.data() + z.total_out;
       z.avail_out = std::uint32_t(out.size() - z.total_out);
       if (isal_deflate(&z) != COMP_OK) throw std::runtime_error("PNG encoding failed: igzip");
-    } while (z.avail_in > 0 || (last && z.internal_state.state != ZSTATE_END));
+      // All input taken and output room left over: a flush is complete (igzip_lib.h).
+    } while (z.avail_in > 0 ||
+             (end && (last ? z.internal_state.state != ZSTATE_END : z.avail_out == 0)));
   };
   // About 256 KB of filtered rows a block, at least one row.
   const int rows_per_block = int(std::max<std::size_t>(1, (256 << 10) / (row_bytes + 1)));
-  std::vector<std::uint8_t> block(std::size_t(std::min(rows_per_block, px.height)) *
-                                  (row_bytes + 1));
+  std::vector<std::uint8_t> block(std::size_t(std::min(rows_per_block, y1 - y0)) * (row_bytes + 1));
   std::vector<std::uint8_t> row(row_bytes), above(row_bytes, 0);
+  if (y0 > 0) packed_row(px, y0 - 1, above.data());
   int in_block = 0;
-  for (int y = 0; y < px.height; ++y) {
-    const std::uint8_t* src = px.data + std::size_t(y) * px.stride;
-    if (px.xrgb32) {  // native-endian words 0xXXRRGGBB
-      for (int x = 0; x < px.width; ++x) {
-        std::uint32_t word;
-        std::memcpy(&word, src + 4 * std::size_t(x), 4);
-        row[3 * std::size_t(x)] = std::uint8_t(word >> 16);
-        row[3 * std::size_t(x) + 1] = std::uint8_t(word >> 8);
-        row[3 * std::size_t(x) + 2] = std::uint8_t(word);
-      }
-    } else {
-      std::copy(src, src + row_bytes, row.begin());
-    }
+  for (int y = y0; y < y1; ++y) {
+    packed_row(px, y, row.data());
     std::uint8_t* f = &block[std::size_t(in_block) * (row_bytes + 1)];
     f[0] = 2;  // Up
     for (std::size_t i = 0; i < row_bytes; ++i) f[1 + i] = std::uint8_t(row[i] - above[i]);
     row.swap(above);
-    if (++in_block == rows_per_block || y + 1 == px.height) {
-      deflate(block.data(), std::size_t(in_block) * (row_bytes + 1), y + 1 == px.height);
+    if (++in_block == rows_per_block || y + 1 == y1) {
+      deflate(block.data(), std::size_t(in_block) * (row_bytes + 1), y + 1 == y1);
       in_block = 0;
     }
   }
   out.resize(z.total_out);
+  return out;
+}
+
+// The image's filtered rows as one zlib stream, compressed in parts of at least kPartBytes by the
+// worker threads (pigz's way: each part a deflate stream of its own, joined on full flushes,
+// the Adler-32s combined). The parts follow from the image's size alone, so the bytes do not
+// depend on the thread count. A 1024^2 frame is three parts.
+std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
+  const std::size_t row_bytes = std::size_t(px.width) * px.channels;
+  if ((row_bytes + 1) * std::size_t(px.height) >= 0xffffffffu)
+    throw std::runtime_error("PNG encoding failed: image too large");
+  constexpr std::size_t kPartBytes = std::size_t(1) << 20;
+  constexpr int kMostParts = 8;
+  const int parts = int(std::clamp<std::size_t>((row_bytes + 1) * px.height / kPartBytes, 1,
+                                                std::min(kMostParts, px.height)));
+  const int rows_per_part = (px.height + parts - 1) / parts;
+  std::vector<std::vector<std::uint8_t>> deflated(parts);
+  std::vector<std::uint32_t> adlers(parts);
+  tbb::parallel_for(0, parts, [&](int k) {
+    const int y0 = k * rows_per_part, y1 = std::min(px.height, y0 + rows_per_part);
+    deflated[k] = deflate_rows(px, y0, y1, k + 1 == parts, adlers[k]);
+  });
+  std::vector<std::uint8_t> out = {0x78, 0x01};  // zlib: deflate, 32 KB window, fastest
+  uLong adler = adlers[0];
+  for (int k = 0; k < parts; ++k) {
+    out.insert(out.end(), deflated[k].begin(), deflated[k].end());
+    if (k > 0) {
+      const int rows = std::min(px.height, (k + 1) * rows_per_part) - k * rows_per_part;
+      adler = adler32_combine(adler, adlers[k], z_off_t((row_bytes + 1) * rows));
+    }
+  }
+  put_u32(out, std::uint32_t(adler));
   return out;
 }
 

@@ -5,7 +5,8 @@
 // matches, which wisp used before, for 3-4 % more bytes (docs/performance.md, "Writing with
 // igzip"); the pixels are the same. Writing is on the per-frame path (the frame, the hair image
 // inside its SVG, the mask), so it is worth a dedicated encoder. PNGs are read with libpng
-// (png_decode.hpp).
+// (png_decode.hpp). An image of more than a megabyte is compressed in parts by the worker threads
+// (png_encode.cpp, compressed_rows), the same bytes at any thread count.
 #pragma once
 
 #include <cstddef>
