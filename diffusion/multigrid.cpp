@@ -57,11 +57,7 @@ using Flags = UninitializedVector<std::uint8_t>;
 // v[i] = 0 for every i, by the worker threads together: a 1024^2 frame's correction is 12 MB,
 // about a millisecond of one thread's stores.
 void fill_zero(Plane& v) {
-  constexpr size_t kFloatsPerTask = size_t(1) << 18;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, v.size(), kFloatsPerTask),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      std::fill(v.begin() + r.begin(), v.begin() + r.end(), 0.0f);
-                    });
+  assign_touched(v, v.size(), 0.0f);
 }
 
 // Asks for the cache line of base[offset] ahead of its use. The passes below read many arrays a
