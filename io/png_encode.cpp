@@ -120,21 +120,19 @@ std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
   constexpr int kMostParts = 8;
   const int parts = int(std::clamp<std::size_t>((row_bytes + 1) * px.height / kPartBytes, 1,
                                                 std::min(kMostParts, px.height)));
-  const int rows_per_part = (px.height + parts - 1) / parts;
+  // Part k is rows row(k) .. row(k + 1) - 1: none empty, since there are no more parts than rows.
+  const auto row = [&](int k) { return int(std::int64_t(k) * px.height / parts); };
   std::vector<std::vector<std::uint8_t>> deflated(parts);
   std::vector<std::uint32_t> adlers(parts);
   tbb::parallel_for(0, parts, [&](int k) {
-    const int y0 = k * rows_per_part, y1 = std::min(px.height, y0 + rows_per_part);
-    deflated[k] = deflate_rows(px, y0, y1, k + 1 == parts, adlers[k]);
+    deflated[k] = deflate_rows(px, row(k), row(k + 1), k + 1 == parts, adlers[k]);
   });
   std::vector<std::uint8_t> out = {0x78, 0x01};  // zlib: deflate, 32 KB window, fastest
   uLong adler = adlers[0];
   for (int k = 0; k < parts; ++k) {
     out.insert(out.end(), deflated[k].begin(), deflated[k].end());
-    if (k > 0) {
-      const int rows = std::min(px.height, (k + 1) * rows_per_part) - k * rows_per_part;
-      adler = adler32_combine(adler, adlers[k], z_off_t((row_bytes + 1) * rows));
-    }
+    if (k > 0)
+      adler = adler32_combine(adler, adlers[k], z_off_t((row_bytes + 1) * (row(k + 1) - row(k))));
   }
   put_u32(out, std::uint32_t(adler));
   return out;

@@ -363,14 +363,22 @@ BodyModel::BodyModel(const HeadGeometry& head, const BodyParams& body)
       m->neighbours =
           std::make_shared<const EdgeNeighbours>(edge_neighbours(m->vertices, m->triangles));
   if (b.neck) {
-    const SweepShape& s = shape_.shape(BodyShape::kNeck);
-    const double rest = (b.neck_top - b.neck_bottom).norm();
-    std::vector<Vector3d> at_rest;
-    for (std::size_t i = 0; i < neck_.t.size(); ++i)
-      at_rest.push_back(s.point(neck_.t[i], neck_.theta[i], rest));
-    neck_neighbours_ =
-        std::make_shared<const EdgeNeighbours>(edge_neighbours(at_rest, neck_.triangles));
+    const Mesh at_rest = neck_mesh((b.neck_top - b.neck_bottom).norm());
+    neck_neighbours_ = std::make_shared<const EdgeNeighbours>(
+        edge_neighbours(at_rest.vertices, at_rest.triangles));
   }
+}
+
+BodyModel::Mesh BodyModel::neck_mesh(double length) const {
+  const SweepShape& s = shape_.shape(BodyShape::kNeck);
+  Mesh m;
+  for (std::size_t i = 0; i < neck_.t.size(); ++i) {
+    m.vertices.push_back(s.point(neck_.t[i], neck_.theta[i], length));
+    m.normals.push_back(s.normal(neck_.t[i], neck_.theta[i], length));
+  }
+  m.triangles = neck_.triangles;
+  m.neighbours = neck_neighbours_;
+  return m;
 }
 
 BodySurface BodyModel::placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame) {
@@ -412,15 +420,7 @@ std::vector<BodySurface> BodyModel::surfaces(const HeadPose& pose, const Vector3
   }
   if (b.neck) {
     const BodyShape::Placement at = shape_.placement(pose, BodyShape::kNeck);
-    const SweepShape& s = shape_.shape(BodyShape::kNeck);
-    Mesh m;
-    for (std::size_t i = 0; i < neck_.t.size(); ++i) {
-      m.vertices.push_back(s.point(neck_.t[i], neck_.theta[i], at.length));
-      m.normals.push_back(s.normal(neck_.t[i], neck_.theta[i], at.length));
-    }
-    m.triangles = neck_.triangles;
-    m.neighbours = neck_neighbours_;
-    out.push_back(placed(kBodyNeck, BodyShape::kNeck, m, at.frame));
+    out.push_back(placed(kBodyNeck, BodyShape::kNeck, neck_mesh(at.length), at.frame));
   }
   if (b.head) out.push_back(head_surface(pose));
   return out;

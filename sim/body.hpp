@@ -206,6 +206,8 @@ class BodyModel {
   };
   // Mesh m moved to `frame`, as surface `part` of solid `solid`.
   static BodySurface placed(int part, int solid, const Mesh& m, const Eigen::Isometry3d& frame);
+  // The neck's mesh (sweep-local, with neck_neighbours_) at `length`, from neck_'s (t, theta).
+  Mesh neck_mesh(double length) const;
 
   BodyShape shape_;
   HeadShape head_shape_;

@@ -89,7 +89,7 @@ TEST_CASE("PNG encoding round-trips 1 to 4 channels, padded rows, many blocks an
 }
 
 TEST_CASE("PNG encoding in parts: the rows decode whole across the parts' joins", "[io][png]") {
-  // 2.3 MB of filtered rows: two parts, compressed apart, of 551 and 550 rows (the Up filter of a
+  // 2.3 MB of filtered rows: two parts, compressed apart, of 550 and 551 rows (the Up filter of a
   // part's first row reads the row before it, in the other part); from 0xXXRRGGBB words, as a
   // frame is written. A join that lost a byte, or a wrong Adler-32, fails libpng's read.
   const int w = 700, h = 1101;
