@@ -70,3 +70,14 @@ TEST_CASE("assign_touched fills an UninitializedVector whole, in every size it t
   assign_touched(bytes, (std::size_t(3) << 20) - 1, std::uint8_t(0));
   CHECK(std::all_of(bytes.begin(), bytes.end(), [](std::uint8_t x) { return x == 0; }));
 }
+
+TEST_CASE("an UninitializedVector's storage starts on a 64-byte line", "[fresh_memory]") {
+  // The solver lays its rows out on whole lines (multigrid.cpp, Level::at); small sizes too,
+  // which a plain allocator would give 16-byte alignment.
+  for (std::size_t n : {std::size_t(1), std::size_t(5), std::size_t(40), std::size_t(1) << 20}) {
+    UninitializedVector<float> v(n);
+    CHECK(reinterpret_cast<std::uintptr_t>(v.data()) % 64 == 0);
+    UninitializedVector<std::uint8_t> bytes(n);
+    CHECK(reinterpret_cast<std::uintptr_t>(bytes.data()) % 64 == 0);
+  }
+}
