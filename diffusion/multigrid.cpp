@@ -531,9 +531,14 @@ std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
   const size_t nc = C.padded();
   std::vector<std::uint8_t> rebuild, alive_changed;
   if (!changed) {
-    C.alive.assign(nc, 0);
-    for (int J = 0; J < C.h; ++J)
-      for (int I = 0; I < C.w; ++I) C.alive[C.at(I, J)] = F.alive[F.at(2 * I, 2 * J)];
+    assign_touched(C.alive, nc, std::uint8_t(0));
+    for_rows(C.h, C.w, [&](int J0, int J1) {
+      for (int J = J0; J < J1; ++J) {
+        std::uint8_t* out = &C.alive[C.at(0, J)];
+        const std::uint8_t* in = &F.alive[F.at(0, 2 * J)];
+        for (int I = 0; I < C.w; ++I) out[I] = in[2 * I];
+      }
+    });
   } else {
     rebuild = near_changed(F, C, *changed, kChangeReach);
     alive_changed.assign(nc, 0);
