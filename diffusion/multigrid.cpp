@@ -1685,14 +1685,16 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       restrict_row(l, J, north, centre, south);
     }
   };
-  smooth(l, options_.pre_smooth, false, &restrict_rows);
+  // Levels 2 and coarser are smoothed more (SolverOptions::coarse_smooth): they are cheap.
+  const bool coarse = l >= 2;
+  smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows);
   fill_zero(levels_[l + 1].e);
   vcycle(l + 1);
   // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
   // operator and can precondition conjugate gradients.
   const RowHook prolongate = [&](int y) { prolongate_row(l, y); };
-  smooth(l, options_.post_smooth, true, measure, &prolongate);
+  smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true, measure, &prolongate);
 }
 
 // Per-channel dot products on the finest level, summed row by row in a fixed order.

@@ -16,9 +16,10 @@
 // barrier and a Dirichlet curve still pins the correction on every level, however thin it is.
 // A coarse point whose fine pixel is fixed is itself fixed.
 //
-// Cycle. Full multigrid (FMG) start, then V(2,2) cycles until the relative residual
-// ||b - A u|| / ||b|| of every channel is below the tolerance, or, with SolverOptions::max_error,
-// until the estimated largest error is below that bound (accelerated by conjugate gradients when
+// Cycle. Full multigrid (FMG) start, then V(2,2) cycles (V(4,4) on levels 2 and coarser, which
+// are cheap: SolverOptions::coarse_smooth) until the relative residual ||b - A u|| / ||b|| of
+// every channel is below the tolerance, or, with SolverOptions::max_error, until the estimated
+// largest error is below that bound (accelerated by conjugate gradients when
 // they slow down, see SolverOptions::krylov; refined in double precision when the tolerance is
 // below what float32 reaches). Smoothing is Gauss-Seidel in an
 // order-independent colouring: red-black on the 5-point finest level, four colours on the
@@ -53,6 +54,12 @@ struct SolverOptions {
   int max_cycles = 100;  // V-cycles (or CG iterations) after the FMG start
   int pre_smooth = 2;
   int post_smooth = 2;
+  // Sweeps before and after the coarse correction on levels 2 and coarser. They hold at most a
+  // sixteenth of the finest points, so 4 cost about 4 % of a cycle more than 2, and bring their
+  // correction closer to an exact coarse solve: the smooth modes that only the coarsest grids
+  // see (nearly sealed pockets, long corridors) then fall faster, and the stopping rule holds a
+  // cycle or more sooner on such drawings (docs/diffusion.md, "Solver").
+  int coarse_smooth = 4;
   bool full_multigrid = true;
   // Plain V-cycles converge at the model-problem rate on ordinary drawings. Where barriers nearly
   // seal off a region, a few modes escape the coarse grids and the cycles slow down; as soon as
