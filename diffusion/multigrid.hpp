@@ -19,13 +19,12 @@
 // Cycle. Full multigrid (FMG) start, then V(2,2) cycles (V(4,4) on levels 2 and coarser, which
 // are cheap: SolverOptions::coarse_smooth) until the relative residual ||b - A u|| / ||b|| of
 // every channel is below the tolerance, or, with SolverOptions::max_error, until the estimated
-// largest error is below that bound (accelerated by conjugate gradients when
-// they slow down, see SolverOptions::krylov; refined in double precision when the tolerance is
-// below what float32 reaches). Smoothing is Gauss-Seidel in an
-// order-independent colouring: red-black on the 5-point finest level, four colours on the
-// 9-point coarse levels; rows are processed in parallel (TBB) and every reduction sums in a
-// fixed order, so the result does not depend on the number of threads. The coarsest level
-// (<= 64 points) is solved exactly with a dense LDLT.
+// largest error is below that bound (accelerated by conjugate gradients when they slow down, see
+// SolverOptions::krylov; refined in double precision when the tolerance is below what float32
+// reaches). Smoothing is Gauss-Seidel in an order-independent colouring: red-black on the
+// 5-point finest level, four colours on the 9-point coarse levels; rows are processed in
+// parallel (TBB) and every reduction sums in a fixed order, so the result does not depend on the
+// number of threads. The coarsest level (<= 64 points) is solved exactly with a dense LDLT.
 //
 // Pixels in a region that no fixed or anchored pixel reaches (sealed by Neumann barriers) have no
 // defined value; they are reported in the statistics and set to 0.
