@@ -840,6 +840,7 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
     const size_t row_floats = size_t(2) * 9 * lanes;
     std::unique_ptr<float[]> ap, coeff;
+    std::vector<double> sums;
     const auto ap_at = [&](int y, int parity) {
       return &ap[size_t(y - y_first) * row_floats + size_t(parity) * 9 * lanes];
     };
@@ -849,10 +850,11 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     // all that those coarse points read. Each lane's values are its own (no lane reads another's),
     // so computing some columns gives each the bits that computing all of them gives.
     const auto compute_columns = [&](int i_lo, int i_hi) {
-      if (!ap) {
+      if (!ap) {  // the task's buffers, once it has a column to compute
         ap.reset(new float[size_t(y_count) * row_floats]);
         coeff.reset(new float[size_t(9) * lanes]);
         in.coeff = coeff.get();
+        sums.resize(size_t(5) * lanes);
       }
       const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
       // The task's rows with a point to compute in these columns.
@@ -888,7 +890,6 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
       }
       // A_c(K, K + d) for d = self, east, south, south-east, south-west: sum over the nine fine
       // points p around K of P(p, K) * (A P)(p, K + d), in double, lanes of one coarse row.
-      std::vector<double> sums(size_t(5) * lanes);
       for (int J = J0; J < J1; ++J) {
         if (!row_wanted[J - J0]) continue;
         const size_t k0 = C.at(0, J);
