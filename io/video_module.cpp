@@ -29,6 +29,7 @@ extern "C" {
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -78,6 +79,9 @@ struct Writer {
   int width = 0;  // the input frames' row length in pixels (the encoded width may be one less)
   int64_t next_pts = 0;
   bool header_written = false;
+  // The frame's rows as sws_scale reads them: its SIMD loads read up to 16 bytes past the last
+  // pixel (valgrind: 4 past a 256x256 frame's end, a page boundary for an mmapped buffer).
+  std::vector<std::uint8_t> padded;
 
   ~Writer() {
     av_packet_free(&packet);
@@ -174,8 +178,11 @@ void* wisp_video_open(const char* path, const char* fourcc, double fps, int widt
 int wisp_video_write(void* writer, const unsigned char* rgb) {
   auto* w = static_cast<Writer*>(writer);
   if (av_frame_make_writable(w->frame) < 0) return 0;
-  const uint8_t* rows[1] = {rgb};
   const int stride[1] = {3 * w->width};
+  const std::size_t bytes = std::size_t(stride[0]) * std::size_t(w->codec->height);
+  w->padded.resize(bytes + AV_INPUT_BUFFER_PADDING_SIZE);
+  std::memcpy(w->padded.data(), rgb, bytes);
+  const uint8_t* rows[1] = {w->padded.data()};
   sws_scale(w->to_yuv, rows, stride, 0, w->codec->height, w->frame->data, w->frame->linesize);
   w->frame->pts = w->next_pts++;
   return encode(*w, w->frame) ? 1 : 0;
