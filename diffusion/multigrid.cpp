@@ -1652,7 +1652,14 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
   const RowHook restrict_rows = [&](int y) {
     thread_local Ring ring;
     thread_local std::vector<float> zeros;
-    if (ring.rows.size() < size_t(3) * NC * fs) ring.rows.assign(size_t(3) * NC * fs, 0.0f);
+    if (ring.rows.size() < size_t(3) * NC * fs) {
+      // The rows go with the old storage, and so do their labels: a larger solve run alongside
+      // (a task of it taken between two of this pass) must not leave a slot that claims a row of
+      // this pass and holds zeros.
+      ring.rows.assign(size_t(3) * NC * fs, 0.0f);
+      std::fill(std::begin(ring.pass), std::end(ring.pass), 0);
+      std::fill(std::begin(ring.y), std::end(ring.y), -1);
+    }
     if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
     // Residual row `row` in the ring (x = 0 of each channel's row).
     const auto residual = [&](int row, const float* out[NC]) {

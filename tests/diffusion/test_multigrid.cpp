@@ -2,6 +2,7 @@
 // manufactured smooth solutions (second-order accuracy), the maximum principle, and the
 // convergence rate of its cycles.
 #include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -524,4 +525,21 @@ TEST_CASE("a problem with a value that is not finite, a bad anchor or a bad size
   Problem short_planes = base();
   short_planes.value.pop_back();
   refused(short_planes, "problem: array sizes do not match the image size");
+}
+
+TEST_CASE("solves side by side give the answers each gives alone", "[multigrid]") {
+  // Two solves at once on the worker threads, the second larger than any before it: each thread's
+  // ring of residual rows (vcycle) grows while passes of the first solve are under way.
+  const Problem small = random_layout(192, 11, 6, true);
+  const std::vector<float> alone = solve_multigrid(small).planes;
+  for (int i = 0; i < 16; ++i) {
+    std::mt19937 rng(40 + i);
+    std::vector<DiffusionCurve> cs;
+    for (int k = 0; k < 6; ++k) cs.push_back(wisp::test::random_curve(rng, 60, 3));
+    const Problem large = rasterize(cs, 256 + 16 * i, 60);
+    std::vector<float> side;
+    tbb::parallel_invoke([&] { side = solve_multigrid(small).planes; },
+                         [&] { solve_multigrid(large); });
+    CHECK(side == alone);
+  }
 }
