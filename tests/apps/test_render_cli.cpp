@@ -7,6 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "image_checks.hpp"
 #include "io/anim_file.hpp"
@@ -130,14 +133,66 @@ TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "
   CHECK(stats["stage_ms_median"]["solve"].get<double>() > 0);
 }
 
-// What differs between two renders' frame k, in words: the SVG (the geometry, before any
-// shading), the solver's record, and the PNG's pixels (how many, by how much, where). Empty when
-// both frames are byte for byte the same. A failure of the determinism test below then says which
-// stage parted: once in CI (stop 42) it failed with the PNG bytes alone to go on.
+// How two images differ, in words: how many pixels, by how much, where; empty when they are equal.
+std::string pixel_difference(const cv::Mat& x, const cv::Mat& y) {
+  if (x.size() != y.size() || x.type() != y.type()) return "sizes differ";
+  cv::Mat diff, any;
+  cv::absdiff(x, y, diff);
+  cv::reduce(diff.reshape(1, int(diff.total())), any, 1, cv::REDUCE_MAX);  // a row per pixel
+  any = any.reshape(1, x.rows);
+  const int count = cv::countNonZero(any > 0);
+  if (count == 0) return "";
+  double most = 0;
+  cv::minMaxLoc(diff.reshape(1), nullptr, &most);
+  const cv::Rect box = cv::boundingRect(any > 0);
+  return std::to_string(count) + " pixels differ, by up to " + std::to_string(int(most)) +
+         ", in x " + std::to_string(box.x) + ".." + std::to_string(box.x + box.width - 1) + ", y " +
+         std::to_string(box.y) + ".." + std::to_string(box.y + box.height - 1);
+}
+
+// The images an SVG embeds (base64 data URIs), decoded, and the text without them.
+std::pair<std::vector<cv::Mat>, std::string> embedded_images(const std::string& svg) {
+  static const std::string kDigits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<cv::Mat> images;
+  std::string text;
+  size_t at = 0;
+  for (size_t b; (b = svg.find("base64,", at)) != std::string::npos;) {
+    const size_t e = svg.find('"', b);
+    text += svg.substr(at, b - at);
+    std::vector<std::uint8_t> bytes;
+    std::uint32_t bits = 0;
+    int count = 0;
+    for (size_t i = b + 7; i < e && svg[i] != '='; ++i) {
+      bits = bits << 6 | std::uint32_t(kDigits.find(svg[i]));
+      if ((count += 6) >= 8) bytes.push_back(std::uint8_t(bits >> (count -= 8)));
+    }
+    images.push_back(cv::imdecode(bytes, cv::IMREAD_UNCHANGED));
+    at = e;
+  }
+  return {images, text + svg.substr(at)};
+}
+
+// What differs between two renders' frame k, in words: the SVG (its text, the geometry, or the
+// pixels of the hair image it embeds, or only that image's compressed bytes), the solver's record,
+// the PNG's pixels or only its compressed bytes. Empty when both frames are byte for byte the same.
+// A failure of the determinism test below then says which stage parted: in CI (stop 42) it failed
+// with the PNG bytes alone to go on, and a local stress run (scripts/determinism-stress) found SVGs
+// whose embedded image had the same pixels in other compressed bytes.
 std::string frame_difference(const std::string& x, const std::string& y, int k) {
   std::string out;
-  if (read_file(frame(x, k, "frame_", "svg")) != read_file(frame(y, k, "frame_", "svg")))
-    out += "SVG differs; ";
+  const std::string svg_x = read_file(frame(x, k, "frame_", "svg"));
+  const std::string svg_y = read_file(frame(y, k, "frame_", "svg"));
+  if (svg_x != svg_y) {
+    const auto [images_x, text_x] = embedded_images(svg_x);
+    const auto [images_y, text_y] = embedded_images(svg_y);
+    if (text_x != text_y || images_x.size() != images_y.size()) out += "SVG text differs; ";
+    for (size_t i = 0; i < std::min(images_x.size(), images_y.size()); ++i) {
+      const std::string d = pixel_difference(images_x[i], images_y[i]);
+      out += "SVG image " + std::to_string(i) + ": " +
+             (d.empty() ? "the same pixels, other compressed bytes" : d) + "; ";
+    }
+  }
   const auto record = [&](const std::string& dir) {
     const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
     const nlohmann::json& f = stats["frames"][k];
@@ -146,18 +201,8 @@ std::string frame_difference(const std::string& x, const std::string& y, int k) 
   };
   if (record(x) != record(y)) out += "solver records " + record(x) + " vs " + record(y) + "; ";
   if (read_file(frame(x, k)) != read_file(frame(y, k))) {
-    const cv::Mat px = cv::imread(frame(x, k)), py = cv::imread(frame(y, k));
-    if (px.size() != py.size()) return out + "PNG sizes differ";
-    cv::Mat diff, any;
-    cv::absdiff(px, py, diff);
-    cv::transform(diff, any, cv::Matx13f(1, 1, 1));
-    double most = 0;
-    cv::minMaxLoc(diff.reshape(1), nullptr, &most);
-    const cv::Rect box = cv::boundingRect(any > 0);
-    out += "PNG: " + std::to_string(cv::countNonZero(any > 0)) + " pixels differ, by up to " +
-           std::to_string(int(most)) + ", in x " + std::to_string(box.x) + ".." +
-           std::to_string(box.x + box.width - 1) + ", y " + std::to_string(box.y) + ".." +
-           std::to_string(box.y + box.height - 1);
+    const std::string d = pixel_difference(cv::imread(frame(x, k)), cv::imread(frame(y, k)));
+    out += "PNG: " + (d.empty() ? "the same pixels, other compressed bytes" : d);
   }
   return out;
 }
