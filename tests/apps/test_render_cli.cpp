@@ -176,7 +176,7 @@ std::pair<std::vector<cv::Mat>, std::string> embedded_images(const std::string& 
 // What differs between two renders' frame k, in words. `pixels`: what the ground rules forbid, the
 // SVG's text (the geometry), the pixels of the hair image it embeds, the solver's record, the PNG's
 // pixels. `bytes`: a PNG (the frame, or the SVG's image) whose pixels are the same in other
-// compressed bytes. About one two-thread render in 500 writes such bytes, and it is not yet
+// compressed bytes. About one render in 500-1500 writes such bytes, and it is not yet
 // explained (docs/render.md, "A known rare difference in compressed bytes"; CI met it at stop
 // 42); scripts/determinism-stress hunts it.
 struct FrameDifference {
