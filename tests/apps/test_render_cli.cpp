@@ -133,6 +133,8 @@ TEST_CASE("wisp render writes valid PNG, SVG, video, contact sheet and stats", "
   CHECK(stats["stage_ms_median"]["solve"].get<double>() > 0);
 }
 
+namespace {
+
 // How two images differ, in words: how many pixels, by how much, where; empty when they are equal.
 std::string pixel_difference(const cv::Mat& x, const cv::Mat& y) {
   if (x.size() != y.size() || x.type() != y.type()) return "sizes differ";
@@ -220,6 +222,8 @@ void same_frames(const std::string& x, const std::string& y, int count) {
     if (!d.bytes.empty()) WARN("frame " << k << ", the same pixels in other bytes: " << d.bytes);
   }
 }
+
+}  // namespace
 
 TEST_CASE("wisp render is deterministic, with 1 or 2 threads", "[cli][render]") {
   const std::string a = render(fresh_folder("render_det_a"), "--frames 0:4 --threads 1");
