@@ -1656,9 +1656,8 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       // The rows go with the old storage, and so do their labels: a larger solve run alongside
       // (a task of it taken between two of this pass) must not leave a slot that claims a row of
       // this pass and holds zeros.
+      ring = Ring{};
       ring.rows.assign(size_t(3) * NC * fs, 0.0f);
-      std::fill(std::begin(ring.pass), std::end(ring.pass), 0);
-      std::fill(std::begin(ring.y), std::end(ring.y), -1);
     }
     if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
     // Residual row `row` in the ring (x = 0 of each channel's row).
@@ -1669,13 +1668,10 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       }
       const int slot = row % 3;
       float* rows[NC];
-      for (int c = 0; c < NC; ++c) {
-        float* r = &ring.rows[(size_t(slot) * NC + c) * fs];
-        r[Level::kLeft - 1] = r[Level::kLeft + F.w] = 0.0f;  // a level's row's layout
-        rows[c] = r + Level::kLeft;
-        out[c] = r + Level::kLeft;
-      }
+      for (int c = 0; c < NC; ++c)
+        out[c] = rows[c] = &ring.rows[(size_t(slot) * NC + c) * fs] + Level::kLeft;
       if (ring.pass[slot] == pass && ring.y[slot] == row) return;
+      for (int c = 0; c < NC; ++c) rows[c][-1] = rows[c][F.w] = 0.0f;  // a level's row's ghosts
       residual_row(l, row, &F.rhs, F.e, rows, nullptr);
       ring.pass[slot] = pass;
       ring.y[slot] = row;

@@ -204,8 +204,8 @@ FrameDifference frame_difference(const std::string& x, const std::string& y, int
     return f["wisps"].dump() + " wisps, " + f["solver_cycles"].dump() + " cycles, residual " +
            f["solver_residual"].dump();
   };
-  if (record(x) != record(y))
-    out.pixels += "solver records " + record(x) + " vs " + record(y) + "; ";
+  const std::string record_x = record(x), record_y = record(y);
+  if (record_x != record_y) out.pixels += "solver records " + record_x + " vs " + record_y + "; ";
   if (read_file(frame(x, k)) != read_file(frame(y, k))) {
     const std::string d = pixel_difference(cv::imread(frame(x, k)), cv::imread(frame(y, k)));
     (d.empty() ? out.bytes : out.pixels) += "PNG: " + (d.empty() ? "other bytes" : d);
