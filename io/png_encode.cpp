@@ -59,6 +59,15 @@ void packed_row(const PixelRows& px, int y, std::uint8_t* row) {
 // The last part of an image ends the deflate stream; the others end on a full flush (byte
 // aligned, no history), so that the parts, compressed apart, join into one stream. Returns the
 // bytes and, in `adler`, the Adler-32 of the filtered rows.
+//
+// The part's first byte (its first row's filter type) is written here as a stored block, and
+// given to igzip as the history its stream starts from. igzip's level-1 body has a path for a
+// stream's very first byte (`.write_first_byte` in ISA-L 2.30's igzip_icf_body.asm) that hashes
+// the register holding the stream struct's address where it means the input's next bytes: the
+// second position's hash-table entry goes to a slot that depends on where the stack lies. The
+// output still decodes to the same rows, but about one process in 3 000 (ASLR places the stack)
+// parsed the start of a stream differently, so renders were now and then other bytes
+// (docs/render.md). With a history igzip never takes that path; the stored block costs 6 bytes.
 std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool last,
                                        std::uint32_t& adler) {
   const std::size_t row_bytes = std::size_t(px.width) * px.channels;
@@ -70,18 +79,29 @@ std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool
   z.level_buf_size = std::uint32_t(level_buf.size());
   z.gzip_flag = IGZIP_DEFLATE;
   std::vector<std::uint8_t> out;
-  adler = 1;  // Adler-32 of no bytes
+  std::size_t written = 0;  // bytes of `out` before igzip's stream (the stored block)
+  adler = 1;                // Adler-32 of no bytes
   const auto deflate = [&](std::uint8_t* data, std::size_t n, bool end) {
     adler = isal_adler32(adler, data, n);
+    if (written == 0) {
+      // A stored block, not the last (header bits 000, then padding to the byte), of one byte:
+      // LEN 1 and NLEN ~1, little-endian (RFC 1951, 3.2.4).
+      out = {0x00, 0x01, 0x00, 0xfe, 0xff, data[0]};
+      written = out.size();
+      if (isal_deflate_set_dict(&z, data, 1) != COMP_OK)
+        throw std::runtime_error("PNG encoding failed: igzip");
+      ++data;
+      --n;
+    }
     z.next_in = data;
     z.avail_in = std::uint32_t(n);
     z.end_of_stream = end && last ? 1 : 0;
     z.flush = end && !last ? FULL_FLUSH : NO_FLUSH;
     do {
-      if (out.size() - z.total_out < 65536)
+      if (out.size() - written - z.total_out < 65536)
         out.resize(std::max<std::size_t>(2 * out.size(), 65536));
-      z.next_out = out.data() + z.total_out;
-      z.avail_out = std::uint32_t(out.size() - z.total_out);
+      z.next_out = out.data() + written + z.total_out;
+      z.avail_out = std::uint32_t(out.size() - written - z.total_out);
       if (isal_deflate(&z) != COMP_OK) throw std::runtime_error("PNG encoding failed: igzip");
       // All input taken and output room left over: a flush is complete (igzip_lib.h).
     } while (z.avail_in > 0 ||
@@ -104,7 +124,7 @@ std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool
       in_block = 0;
     }
   }
-  out.resize(z.total_out);
+  out.resize(written + z.total_out);
   return out;
 }
 
@@ -124,9 +144,13 @@ std::vector<std::uint8_t> compressed_rows(const PixelRows& px) {
   const auto row = [&](int k) { return int(std::int64_t(k) * px.height / parts); };
   std::vector<std::vector<std::uint8_t>> deflated(parts);
   std::vector<std::uint32_t> adlers(parts);
-  tbb::parallel_for(0, parts, [&](int k) {
+  const auto deflate_part = [&](int k) {
     deflated[k] = deflate_rows(px, row(k), row(k + 1), k + 1 == parts, adlers[k]);
-  });
+  };
+  if (parts == 1)
+    deflate_part(0);  // on the calling thread (an SVG's hair image, a small frame)
+  else
+    tbb::parallel_for(0, parts, deflate_part);
   std::vector<std::uint8_t> out = {0x78, 0x01};  // zlib: deflate, 32 KB window, fastest
   uLong adler = adlers[0];
   for (int k = 0; k < parts; ++k) {
