@@ -225,17 +225,23 @@ int run_frame_table(const std::vector<std::string>&) {
   fs::create_directories(dir);
   const std::string drawing = WISP_SOURCE_DIR "/data/drawings/wisps.xml";
   const std::string png = (dir / "d.png").string(), stats = (dir / "d.json").string();
+  // Each run's own rasterize + setup, read after it: the median of those beside the median wall
+  // (the last run's alone could be the slowest, and larger than the median wall).
+  std::vector<double> setups;
   const auto diffuse = median_run(3, [&] {
-    return timed_run(
-        {wisp, "diffuse", drawing, "-o", png, "--size", "1024x1024", "--stats", stats});
+    const auto run =
+        timed_run({wisp, "diffuse", drawing, "-o", png, "--size", "1024x1024", "--stats", stats});
+    std::ifstream stats_in(stats);
+    const json d = json::parse(stats_in, nullptr, false);
+    setups.push_back(d.is_object() ? d["solver"].value("setup_ms", 0.0) +
+                                         d["times_ms"].value("rasterize", 0.0)
+                                   : 0.0);
+    return run;
   });
-  std::ifstream stats_in(stats);
-  const json d = json::parse(stats_in, nullptr, false);
-  const double d_setup =
-      d.is_object() ? d["solver"].value("setup_ms", 0.0) + d["times_ms"].value("rasterize", 0.0)
-                    : 0.0;
+  std::sort(setups.begin(), setups.end());
   rows.push_back({"wisp diffuse of a 1024^2 drawing, whole process",
-                  fmt("%.0f ms, rasterize + solver setup %.0f ms", diffuse.first, d_setup),
+                  fmt("%.0f ms, rasterize + solver setup %.0f ms (medians)", diffuse.first,
+                      setups[setups.size() / 2]),
                   "<= 100 ms", diffuse.first <= 100});
 
   std::fprintf(stderr, "frame-table: arrangement\n");
