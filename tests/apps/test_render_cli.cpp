@@ -213,7 +213,7 @@ FrameDifference frame_difference(const std::string& x, const std::string& y, int
   return out;
 }
 
-// Frames 0 .. count-1 of two renders show the same pictures.
+// Frames 0 .. count-1 of two renders are the same files (PNG and SVG), byte for byte.
 void same_frames(const std::string& x, const std::string& y, int count) {
   for (int k = 0; k < count; ++k) {
     INFO("frame " << k);
