@@ -138,7 +138,7 @@ TEST_CASE("PNG bytes do not depend on where the encoding thread's stack lies", "
   // stream's start then depended on bits 16-47 of the stack's address, which ASLR sets, and
   // about one process in 3 000 wrote other bytes. Here the image is encoded on threads whose
   // stacks lie 64 KiB apart. The image is tiny, so igzip's hash table is small and the stray slot
-  // often meets one the parse uses: before the fix 16 of 1 024 such stacks gave other bytes.
+  // often meets one the parse uses: before the fix 9 of these 512 stacks gave other bytes.
   const std::uint8_t pixels[] = {1, 2, 3, 1, 2, 3, 1, 2, 3, 1, 2, 3, 1, 2, 3, 1, 2, 3};
   const wisp::io::PixelRows image{pixels, 3, 2, 3, 9, false};
   const std::vector<std::uint8_t> reference = wisp::io::encode_png(image);
