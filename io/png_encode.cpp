@@ -53,6 +53,8 @@ void packed_row(const PixelRows& px, int y, std::uint8_t* row) {
   }
 }
 
+constexpr std::uint8_t kFilterUp = 2;  // PNG's filter type "Up" (the PNG spec, 9.2)
+
 // Rows y0 .. y1 - 1, each as PNG stores it: the filter type byte (2, Up) and the row minus the
 // row above (the first row of the image is its own bytes: Up against a row of zeros), deflated
 // (raw, no zlib wrapper) in blocks of rows so that the filtered rows are never whole in memory.
@@ -60,7 +62,7 @@ void packed_row(const PixelRows& px, int y, std::uint8_t* row) {
 // aligned, no history), so that the parts, compressed apart, join into one stream. Returns the
 // bytes and, in `adler`, the Adler-32 of the filtered rows.
 //
-// The part's first byte (its first row's filter type) is written here as a stored block, and
+// The part's first byte (its first row's filter type) is written here as a stored block and
 // given to igzip as the history its stream starts from. igzip's level-1 body has a path for a
 // stream's very first byte (`.write_first_byte` in ISA-L 2.30's igzip_icf_body.asm) that hashes
 // the register holding the stream struct's address where it means the input's next bytes: the
@@ -78,30 +80,27 @@ std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool
   z.level_buf = level_buf.data();
   z.level_buf_size = std::uint32_t(level_buf.size());
   z.gzip_flag = IGZIP_DEFLATE;
-  std::vector<std::uint8_t> out;
-  std::size_t written = 0;  // bytes of `out` before igzip's stream (the stored block)
-  adler = 1;                // Adler-32 of no bytes
+  // Every row's filter type is Up, so the part's first byte is known: the stored block (not the
+  // last: header bits 000, then padding to the byte) of that one byte, LEN 1 and NLEN ~1,
+  // little-endian (RFC 1951, 3.2.4), and igzip's history.
+  std::uint8_t up = kFilterUp;
+  std::vector<std::uint8_t> out = {0x00, 0x01, 0x00, 0xfe, 0xff, up};
+  const std::size_t stored = out.size();
+  if (isal_deflate_set_dict(&z, &up, 1) != COMP_OK)
+    throw std::runtime_error("PNG encoding failed: igzip");
+  adler = 1;  // Adler-32 of no bytes
   const auto deflate = [&](std::uint8_t* data, std::size_t n, bool end) {
     adler = isal_adler32(adler, data, n);
-    if (written == 0) {
-      // A stored block, not the last (header bits 000, then padding to the byte), of one byte:
-      // LEN 1 and NLEN ~1, little-endian (RFC 1951, 3.2.4).
-      out = {0x00, 0x01, 0x00, 0xfe, 0xff, data[0]};
-      written = out.size();
-      if (isal_deflate_set_dict(&z, data, 1) != COMP_OK)
-        throw std::runtime_error("PNG encoding failed: igzip");
-      ++data;
-      --n;
-    }
+    if (z.total_in == 0) ++data, --n;  // the first block's first byte: in the stored block
     z.next_in = data;
     z.avail_in = std::uint32_t(n);
     z.end_of_stream = end && last ? 1 : 0;
     z.flush = end && !last ? FULL_FLUSH : NO_FLUSH;
     do {
-      if (out.size() - written - z.total_out < 65536)
+      if (out.size() - stored - z.total_out < 65536)
         out.resize(std::max<std::size_t>(2 * out.size(), 65536));
-      z.next_out = out.data() + written + z.total_out;
-      z.avail_out = std::uint32_t(out.size() - written - z.total_out);
+      z.next_out = out.data() + stored + z.total_out;
+      z.avail_out = std::uint32_t(out.size() - stored - z.total_out);
       if (isal_deflate(&z) != COMP_OK) throw std::runtime_error("PNG encoding failed: igzip");
       // All input taken and output room left over: a flush is complete (igzip_lib.h).
     } while (z.avail_in > 0 ||
@@ -116,7 +115,7 @@ std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool
   for (int y = y0; y < y1; ++y) {
     packed_row(px, y, row.data());
     std::uint8_t* f = &block[std::size_t(in_block) * (row_bytes + 1)];
-    f[0] = 2;  // Up
+    f[0] = kFilterUp;
     for (std::size_t i = 0; i < row_bytes; ++i) f[1 + i] = std::uint8_t(row[i] - above[i]);
     row.swap(above);
     if (++in_block == rows_per_block || y + 1 == y1) {
@@ -124,7 +123,7 @@ std::vector<std::uint8_t> deflate_rows(const PixelRows& px, int y0, int y1, bool
       in_block = 0;
     }
   }
-  out.resize(written + z.total_out);
+  out.resize(stored + z.total_out);
   return out;
 }
 
