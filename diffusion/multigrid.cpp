@@ -116,6 +116,18 @@ struct Level {
   // level's padded grid (see Level::p below): weights of the fine points of coarse cell (I,J).
   Plane e, rhs;  // channel planes, padded
 
+  // The finest level's values (e, rhs, and every plane of its points: vat()) are stored with
+  // each row's even points first, from kLeft, and its odd ones after, from `odd` (0 on the coarse
+  // levels, whose rows are in order). A colour of the red-black smoother is then one half of a
+  // row: sixteen of its points are one load and one store, their east and west neighbours two
+  // loads from the other half, their north and south ones the same half of the rows around
+  // (docs/performance.md, "The finest level by columns": its relaxation 1.3-1.5x faster). Its
+  // operator arrays (code, alive, diag, inv_diag) stay in order for the setup's products, and the
+  // cycles read copies of the code and anchored diagonals in the values' layout.
+  int odd = 0;
+  Flags pcode;             // finest: code, at vat()
+  Plane pdiag, pinv_diag;  // finest: diag and inv_diag at vat(), where anchored
+
   // Each row's first point sits at the start of a 64-byte line (a Plane's storage starts on
   // one), its ghost x = -1 at the end of the line before: the passes' loads of sixteen points
   // at x then read one line, not two (1024^2 cycles 15 % faster: docs/performance.md).
@@ -123,6 +135,33 @@ struct Level {
   static int stride_for(int w) { return (kLeft + w + 1 + 15) / 16 * 16; }
   size_t padded() const { return size_t(stride) * size_t(h + 2); }
   size_t at(int x, int y) const { return size_t(y + 1) * stride + size_t(x + kLeft); }
+  // Where the value of point (x, y) is, for x in [-1, w]: x = -1 and x = w are ghosts (0).
+  size_t vat(int x, int y) const {
+    if (odd == 0) return at(x, y);
+    return size_t(y + 1) * stride + size_t((x & 1 ? odd : kLeft) + (x >> 1));
+  }
+  int even_count() const { return (w + 1) / 2; }
+  int odd_count() const { return w / 2; }
+  // The runs of a row's values: `count` points from `offset` past the row's start, point i at
+  // x = x0 + dx * i. One run on the coarse levels, two on the finest.
+  struct Run {
+    int offset, count, x0, dx;
+  };
+  std::array<Run, 2> runs() const {
+    if (odd == 0) return {Run{kLeft, w, 0, 1}, Run{0, 0, 0, 1}};
+    return {Run{kLeft, even_count(), 0, 2}, Run{odd, odd_count(), 1, 2}};
+  }
+  // The ghost values of a row (relative to its x = 0) that a pass reads: 0 in any row array.
+  std::array<int, 3> ghosts() const {
+    if (odd == 0) return {-1, w, w};
+    return {even_count(), odd - kLeft - 1, odd - kLeft + odd_count()};
+  }
+  // The finest level's layout: even points from kLeft with a ghost after them, the odd ones
+  // from the next line, with a ghost before and after.
+  void lay_out_by_columns() {
+    odd = (kLeft + even_count() + 1 + 15) / 16 * 16;
+    stride = (odd + odd_count() + 1 + 15) / 16 * 16;
+  }
 };
 
 // Weights of the fine points of coarse cell (I,J) (stored on the coarse level's padded grid):
@@ -313,7 +352,8 @@ class Multigrid {
   bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
-  std::vector<size_t> coarse_points_;
+  std::vector<size_t> coarse_points_;  // its free points (at()), and where their values are (vat())
+  std::vector<size_t> coarse_values_;
 
   int mark_fixed(std::vector<std::uint8_t>& fixed) const;
   // The builders of the levels' operators return which points' stored operator (diagonal,
@@ -334,6 +374,7 @@ class Multigrid {
   // reads it (rows in parallel): the prolongation, in the post-smoothing's wave.
   void smooth(int l, int sweeps, bool reverse, const RowHook* row_done = nullptr,
               const RowHook* row_first = nullptr);
+  void relax_finest_row(Level& F, int y, int half);
   void relax_row(Level& L, int y, int x_parity);
   // Both colours of row y of a 9-point level: parity `first`, then the other (see smooth()).
   void relax_row_pair(Level& L, int y, int first);
@@ -425,14 +466,13 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   Level& L = levels_[0];
   L.w = p.width;
   L.h = p.height;
-  L.stride = Level::stride_for(L.w);
+  L.lay_out_by_columns();
   L.nine_point = false;
   const size_t n = L.padded();
   std::vector<std::uint8_t> changed;
   if (full) {
-    for (auto* v : {&L.diag, &L.inv_diag}) assign_touched(*v, n, 0.0f);
-    assign_touched(L.code, n, std::uint8_t(0));
-    assign_touched(L.alive, n, std::uint8_t(0));
+    for (auto* v : {&L.diag, &L.inv_diag, &L.pdiag, &L.pinv_diag}) assign_touched(*v, n, 0.0f);
+    for (auto* v : {&L.code, &L.alive, &L.pcode}) assign_touched(*v, n, std::uint8_t(0));
   } else {
     changed.assign(n, 0);
   }
@@ -464,6 +504,10 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
       codes(0, 1, &none, W > 1 ? fixed_row + 1 : &one);
       if (W > 2) codes(1, W - 2, links, fixed_row + 2);
       if (W > 1) codes(W - 1, 1, links + W - 2, &one);
+      // The cycles' copy of the codes, even points then odd ones (Level::odd).
+      std::uint8_t *even = &L.pcode[L.vat(0, y)], *odd = &L.pcode[L.vat(1, y)];
+      for (int i = 0; i < L.even_count(); ++i) even[i] = code[2 * i];
+      for (int i = 0; i < L.odd_count(); ++i) odd[i] = code[2 * i + 1];
       // The diagonal of anchored points (elsewhere it is the code's: diag_of()).
       for (int x = 0; x < W; ++x) {
         if (!(code[x] & kCodeAnchored)) continue;
@@ -471,6 +515,8 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
         bool c = update(L.diag[k0 + x], diag);
         c |= update(L.inv_diag[k0 + x], 1.0f / diag);
         if (changed_row) changed_row[x] |= c;
+        L.pdiag[L.vat(x, y)] = L.diag[k0 + x];
+        L.pinv_diag[L.vat(x, y)] = L.inv_diag[k0 + x];
       }
     }
   });
@@ -976,12 +1022,14 @@ template <int NC>
 void Multigrid<NC>::build_coarsest() {
   const Level& L = levels_.back();
   coarse_points_.clear();
+  coarse_values_.clear();
   std::vector<int> index(L.padded(), -1);
   for (int y = 0; y < L.h; ++y)
     for (int x = 0; x < L.w; ++x)
       if (L.alive[L.at(x, y)]) {
         index[L.at(x, y)] = int(coarse_points_.size());
         coarse_points_.push_back(L.at(x, y));
+        coarse_values_.push_back(L.vat(x, y));
       }
   const int m = int(coarse_points_.size());
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
@@ -1013,9 +1061,9 @@ void Multigrid<NC>::solve_coarsest() {
   if (m == 0) return;
   for (int c = 0; c < NC; ++c) {
     Eigen::VectorXd b(m);
-    for (int r = 0; r < m; ++r) b[r] = L.rhs[c * n + coarse_points_[r]];
+    for (int r = 0; r < m; ++r) b[r] = L.rhs[c * n + coarse_values_[r]];
     const Eigen::VectorXd x = coarse_ldlt_.solve(b);
-    for (int r = 0; r < m; ++r) L.e[c * n + coarse_points_[r]] = float(x[r]);
+    for (int r = 0; r < m; ++r) L.e[c * n + coarse_values_[r]] = float(x[r]);
   }
 }
 
@@ -1063,18 +1111,31 @@ struct RowCouplings {
   }
 };
 
+// A half row of the finest level (Level::odd): `count` points from `own`, point i at x = 2 i + half
+// of row y; the other half's point i is at `other`, and point i's east and west neighbours are the
+// other half's points i + half and i + half - 1, its north and south ones the same half's points
+// i of the rows around (+- Level::stride).
+struct HalfRow {
+  size_t own, other;
+  int count, half;
+};
+HalfRow half_row(const Level& F, int y, int half) {
+  const size_t even = F.vat(0, y), odd = F.vat(1, y);
+  return half ? HalfRow{odd, even, F.odd_count(), 1} : HalfRow{even, odd, F.even_count(), 0};
+}
+
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
-// The finest level's operator at points x .. x+15 of the row starting at `row`, from their codes
-// (0 in the lanes outside `in`): the couplings to the four neighbours, and the diagonal or its
-// inverse.
+// The finest level's operator at points i .. i+15 of a half row (0 in the lanes outside `in`):
+// the couplings to the four neighbours, and the diagonal or its inverse.
 struct Coefficients16 {
   __m512 e, w, s, n, d;
 };
-inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __mmask16 in,
+inline Coefficients16 finest_coefficients(const Level& F, const HalfRow& r, int i, __mmask16 in,
                                           bool inverse) {
-  const std::uint8_t* code = &L.code[row + x];
-  const __m128i here = _mm_maskz_loadu_epi8(in, code), west = _mm_maskz_loadu_epi8(in, code - 1),
-                north = _mm_maskz_loadu_epi8(in, code - L.stride);
+  const std::uint8_t* code = &F.pcode[r.own + i];
+  const __m128i here = _mm_maskz_loadu_epi8(in, code),
+                west = _mm_maskz_loadu_epi8(in, &F.pcode[r.other + i + r.half - 1]),
+                north = _mm_maskz_loadu_epi8(in, code - F.stride);
   const __m512 one = _mm512_set1_ps(1.0f);
   const auto bit = [&](__m128i v, std::uint8_t b) {
     return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
@@ -1089,12 +1150,28 @@ inline Coefficients16 finest_coefficients(const Level& L, size_t row, int x, __m
                               _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
   // Anchored points are along the curves: most groups of sixteen have none.
   const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
-  const float* stored = (inverse ? L.inv_diag : L.diag).data();
-  prefetch(stored, row + x + 64);  // four groups ahead
-  if (anchored) k.d = _mm512_mask_loadu_ps(k.d, anchored, stored + row + x);
+  const float* stored = (inverse ? F.pinv_diag : F.pdiag).data() + r.own + i;
+  prefetch(stored, 64);  // four groups ahead
+  if (anchored) k.d = _mm512_mask_loadu_ps(k.d, anchored, stored);
   return k;
 }
+#endif
 
+// The same, one point at a time (builds without AVX-512).
+struct Coefficients1 {
+  float e, w, s, n, d;
+};
+inline Coefficients1 finest_coefficients(const Level& F, const HalfRow& r, int i, bool inverse) {
+  const std::uint8_t here = F.pcode[r.own + i], west = F.pcode[r.other + i + r.half - 1],
+                     north = F.pcode[r.own + i - F.stride];
+  const float d = here & kCodeAnchored
+                      ? (inverse ? F.pinv_diag : F.pdiag)[r.own + i]
+                      : (inverse ? kLinksInverse : kLinksDiag)[here >> kCodeLinksShift];
+  return {here & kCodeEast ? 1.0f : 0.0f, west & kCodeEast ? 1.0f : 0.0f,
+          here & kCodeSouth ? 1.0f : 0.0f, north & kCodeSouth ? 1.0f : 0.0f, d};
+}
+
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
 // The stencil's sums at sixteen points of channel row `ec` (stride s), in the scalar loops' order:
 // the four edge neighbours', and the four corner neighbours' of the 9-point levels.
 template <class Load>
@@ -1115,37 +1192,68 @@ inline __m512 corner_sum(__m512 pnw, __m512 pse, __m512 psw, __m512 pne, const f
 }
 #endif
 
-// The couplings of the row starting at `row` and its diagonal (or its inverse): a coarse level's
-// arrays, or on the finest level its codes decoded into buffers of the thread (the same floats as
-// arrays would hold, so the loops below compute the same bits on every level; AVX-512 builds
-// decode the codes in registers instead).
+// The couplings of the row starting at `row` of a coarse level and its diagonal (or its inverse).
 struct RowOperator {
   RowCouplings a;
   const float* d;
 };
 RowOperator row_operator(const Level& L, size_t row, bool inverse) {
-  if (L.code.empty()) return {RowCouplings(L, row), &(inverse ? L.inv_diag : L.diag)[row]};
-  thread_local std::vector<float> buffer;
-  const size_t part = size_t(L.w);
-  if (buffer.size() < 5 * part) buffer.resize(5 * part);
-  float *east = buffer.data(), *west = east + part, *south = west + part, *north = south + part,
-        *d = north + part;
-  const std::uint8_t* code = &L.code[row];
-  const Plane& stored = inverse ? L.inv_diag : L.diag;
-  const float* by_links = inverse ? kLinksInverse : kLinksDiag;
-  for (int x = 0; x < L.w; ++x) {
-    east[x] = code[x] & kCodeEast ? 1.0f : 0.0f;
-    west[x] = code[x - 1] & kCodeEast ? 1.0f : 0.0f;
-    south[x] = code[x] & kCodeSouth ? 1.0f : 0.0f;
-    north[x] = code[x - L.stride] & kCodeSouth ? 1.0f : 0.0f;
-    d[x] = code[x] & kCodeAnchored ? stored[row + x] : by_links[code[x] >> kCodeLinksShift];
-  }
-  return {RowCouplings(east, west, south, north, L.stride), d};
+  return {RowCouplings(L, row), &(inverse ? L.inv_diag : L.diag)[row]};
 }
 
-// Relaxes the points of row y whose x has parity `x_parity` (all channels): each becomes what its
-// equation asks given its neighbours. Only the points of that parity are computed, every channel
-// with the couplings loaded once; the sum has the same order as RowCouplings::neighbour_sum.
+// Relaxes the points of half `half` of row y of the finest level (its points of that x parity;
+// Level::odd): each becomes what its equation asks given its neighbours, every channel with the
+// couplings decoded once. The sum has the order of RowCouplings::neighbour_sum.
+template <int NC>
+void Multigrid<NC>::relax_finest_row(Level& F, int y, int half) {
+  const size_t n = F.padded();
+  const int s = F.stride;
+  const HalfRow r = half_row(F, y, half);
+  const int west = r.half - 1, east = r.half;  // the neighbours' places in the other half
+  float* __restrict e[NC];
+  const float* __restrict across[NC];
+  const float* __restrict b[NC];
+  for (int c = 0; c < NC; ++c) {
+    e[c] = &F.e[c * n + r.own];
+    across[c] = &F.e[c * n + r.other];
+    b[c] = &F.rhs[c * n + r.own];
+  }
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  // Sixteen points at a time, every lane one of this half's, with the scalar loop's operations in
+  // its order (the compiler contracts them to the same fused multiply-adds): the same bits.
+  for (int i = 0; i < r.count; i += 16) {
+    const __mmask16 in = r.count - i >= 16 ? 0xFFFF : __mmask16((1u << (r.count - i)) - 1);
+    const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
+    // The rows that the next row's relaxation reads first.
+    for (int c = 0; c < NC; ++c)
+      prefetch(e[c], 2 * s + i), prefetch(across[c], 2 * s + i), prefetch(b[c], s + i);
+    const Coefficients16 k = finest_coefficients(F, r, i, in, true);
+    for (int c = 0; c < NC; ++c) {
+      float* q = e[c] + i;
+      const float* o = across[c] + i;
+      __m512 t = _mm512_mul_ps(k.w, load(o + west));
+      t = _mm512_fmadd_ps(k.e, load(o + east), t);
+      t = _mm512_fmadd_ps(k.s, load(q + s), t);
+      t = _mm512_fmadd_ps(k.n, load(q - s), t);
+      _mm512_mask_storeu_ps(q, in, _mm512_mul_ps(_mm512_add_ps(load(b[c] + i), t), k.d));
+    }
+  }
+#else
+  for (int i = 0; i < r.count; ++i) {
+    const Coefficients1 k = finest_coefficients(F, r, i, true);
+    for (int c = 0; c < NC; ++c) {
+      const float t = k.e * across[c][i + east] + k.w * across[c][i + west] + k.s * e[c][i + s] +
+                      k.n * e[c][i - s];
+      e[c][i] = (b[c][i] + t) * k.d;
+    }
+  }
+#endif
+}
+
+// Relaxes the points of row y of a coarse (9-point) level whose x has parity `x_parity` (all
+// channels): each becomes what its equation asks given its neighbours, every channel with the
+// couplings loaded once; the sum has the order of RowCouplings::neighbour_sum. Point by point:
+// relax_row_pair's path without AVX-512.
 template <int NC>
 void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
   const size_t n = L.padded(), row = L.at(0, y);
@@ -1156,69 +1264,9 @@ void Multigrid<NC>::relax_row(Level& L, int y, int x_parity) {
     e[c] = &L.e[c * n + row];
     b[c] = &L.rhs[c * n + row];
   }
-#if defined(__AVX512BW__) && defined(__AVX512VL__)
-  // Sixteen points at a time, both colours computed and only this parity's stored (masked), with
-  // the scalar loops' operations in their order (the compiler contracts them to the same fused
-  // multiply-adds): the same bits, four to eight times fewer instructions. The finest level's
-  // codes are decoded in registers.
-  {
-    const bool finest = !L.code.empty();
-    const RowCouplings a =
-        finest ? RowCouplings(nullptr, nullptr, nullptr, nullptr, s) : RowCouplings(L, row);
-    const float* id = finest ? nullptr : &L.inv_diag[row];
-    const __mmask16 parity = x_parity ? 0xAAAA : 0x5555;
-    // A block's values are stored after the next block's loads: those overlap the block's
-    // sixteen points (its last as a west neighbour), and a load that overlaps a store still in
-    // flight waits for it. What they read there is of the other parity, unchanged either way.
-    __m512 pending[NC];
-    for (__m512& v : pending) v = _mm512_setzero_ps();
-    __mmask16 pending_lanes = 0;
-    int pending_x = 0;
-    for (int x = 0; x < L.w; x += 16) {
-      const __mmask16 in = L.w - x >= 16 ? 0xFFFF : __mmask16((1u << (L.w - x)) - 1);
-      const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
-      __m512 pe, pw, ps, pn, d;
-      __m512 pse = _mm512_setzero_ps(), pnw = pse, psw = pse, pne = pse;  // 9-point levels only
-      if (finest) {
-        // The rows that the next row's relaxation reads first.
-        for (int c = 0; c < NC; ++c) prefetch(e[c], 2 * s + x), prefetch(b[c], s + x);
-        const Coefficients16 k = finest_coefficients(L, row, x, in, true);
-        pe = k.e, pw = k.w, ps = k.s, pn = k.n, d = k.d;
-      } else {
-        pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
-        if (a.nine_point)
-          pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
-      }
-      __m512 now[NC];
-      for (int c = 0; c < NC; ++c) {
-        const float* ec = e[c];
-        __m512 t = edge_sum(pw, pe, ps, pn, ec, s, load);
-        if (a.nine_point) t = _mm512_add_ps(t, corner_sum(pnw, pse, psw, pne, ec, s, load));
-        now[c] = _mm512_mul_ps(_mm512_add_ps(load(b[c]), t), d);
-      }
-      for (int c = 0; c < NC; ++c)
-        _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]), pending[c] = now[c];
-      pending_lanes = in & parity;
-      pending_x = x;
-    }
-    for (int c = 0; c < NC; ++c) _mm512_mask_storeu_ps(e[c] + pending_x, pending_lanes, pending[c]);
-  }
-  return;
-#endif
   const RowOperator op = row_operator(L, row, true);
   const RowCouplings& a = op.a;
   const float* __restrict id = op.d;
-  if (!a.nine_point) {
-    for (int x = x_parity; x < L.w; x += 2) {
-      const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
-      for (int c = 0; c < NC; ++c) {
-        const float* ec = e[c];
-        const float t = pe * ec[x + 1] + pw * ec[x - 1] + ps * ec[x + s] + pn * ec[x - s];
-        e[c][x] = (b[c][x] + t) * d;
-      }
-    }
-    return;
-  }
   for (int x = x_parity; x < L.w; x += 2) {
     const float pe = a.ae[x], pw = a.aw[x], ps = a.as[x], pn = a.an[x], d = id[x];
     const float pse = a.ase[x], pnw = a.anw[x], psw = a.asw[x], pne = a.ane[x];
@@ -1344,7 +1392,7 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
     const bool first = k % 2 == 0;
     if (!L.nine_point) {
       const int colour = first != reverse ? 0 : 1;
-      relax_row(L, y, (colour + y) & 1);
+      relax_finest_row(L, y, (colour + y) & 1);
       return;
     }
     const bool first_rows = reverse ? (y & 1) : !(y & 1);
@@ -1415,31 +1463,46 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
   const Level& L = levels_[l];
   const size_t n = L.padded(), row = L.at(0, y);
   const int w = L.w;
-#if defined(__AVX512BW__) && defined(__AVX512VL__)
-  // The finest level, its codes decoded in registers: the operations of the loops below in their
-  // order, as the compiler vectorises and contracts them (the same bits).
-  if (!L.code.empty()) {
+  if (L.odd) {
+    // The finest level, a half row at a time (Level::odd), its codes decoded into registers;
+    // `out` holds the row in the values' layout. The operations of the loops below, in their
+    // order (the same bits as in order).
     const int s = L.stride;
-    for (int x = 0; x < w; x += 16) {
-      const __mmask16 in = w - x >= 16 ? 0xFFFF : __mmask16((1u << (w - x)) - 1);
-      const Coefficients16 k = finest_coefficients(L, row, x, in, false);
-      for (int c = 0; c < NC; ++c) {
-        const float* e = &e_planes[c * n + row + x];
+    for (int half = 0; half < 2; ++half) {
+      const HalfRow r = half_row(L, y, half);
+      const int west = r.half - 1, east = r.half, to = int(r.own - row);
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+      for (int i = 0; i < r.count; i += 16) {
+        const __mmask16 in = r.count - i >= 16 ? 0xFFFF : __mmask16((1u << (r.count - i)) - 1);
         const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
-        __m512 t = _mm512_mul_ps(k.w, load(e - 1));
-        t = _mm512_fmadd_ps(k.e, load(e + 1), t);
-        t = _mm512_fmadd_ps(k.s, load(e + s), t);
-        t = _mm512_fmadd_ps(k.n, load(e - s), t);
-        const __m512 r =
-            b_planes ? _mm512_add_ps(
-                           _mm512_fnmadd_ps(k.d, load(e), load(&(*b_planes)[c * n + row + x])), t)
-                     : _mm512_fnmadd_ps(k.d, load(e), t);
-        _mm512_mask_storeu_ps(out[c] + x, in, r);
+        const Coefficients16 k = finest_coefficients(L, r, i, in, false);
+        for (int c = 0; c < NC; ++c) {
+          const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
+          __m512 t = _mm512_mul_ps(k.w, load(o + west));
+          t = _mm512_fmadd_ps(k.e, load(o + east), t);
+          t = _mm512_fmadd_ps(k.s, load(q + s), t);
+          t = _mm512_fmadd_ps(k.n, load(q - s), t);
+          const __m512 v =
+              b_planes
+                  ? _mm512_add_ps(
+                        _mm512_fnmadd_ps(k.d, load(q), load(&(*b_planes)[c * n + r.own + i])), t)
+                  : _mm512_fnmadd_ps(k.d, load(q), t);
+          _mm512_mask_storeu_ps(out[c] + to + i, in, v);
+        }
       }
-    }
-  } else
+#else
+      for (int i = 0; i < r.count; ++i) {
+        const Coefficients1 k = finest_coefficients(L, r, i, false);
+        for (int c = 0; c < NC; ++c) {
+          const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
+          const float t = k.e * o[east] + k.w * o[west] + k.s * q[s] + k.n * q[-s];
+          out[c][to + i] =
+              b_planes ? t + ((*b_planes)[c * n + r.own + i] - k.d * q[0]) : t - k.d * q[0];
+        }
+      }
 #endif
-  {
+    }
+  } else {
     const RowOperator op = row_operator(L, row, false);
     const float* __restrict d = op.d;
     for (int c = 0; c < NC; ++c) {
@@ -1456,10 +1519,12 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
   }
   if (norms)  // while the row is in cache
     for (int c = 0; c < NC; ++c) {
-      const float* __restrict r = out[c];
       float sum = 0;
+      for (const Level::Run& run : L.runs()) {
+        const float* __restrict r = out[c] + (run.offset - Level::kLeft);
 #pragma omp simd reduction(+ : sum)
-      for (int x = 0; x < w; ++x) sum += r[x] * r[x];
+        for (int i = 0; i < run.count; ++i) sum += r[i] * r[i];
+      }
       norms[c] = sum;
     }
 }
@@ -1472,11 +1537,11 @@ void Multigrid<NC>::residual_of(int l, const Plane* b_planes, const Plane& e_pla
   const Level& L = levels_[l];
   const size_t n = L.padded();
   for_rows(L.h, L.w * NC, [&](int y0, int y1) {
-    std::vector<float> buffer(out ? 0 : size_t(L.w) * NC);
+    std::vector<float> buffer(out ? 0 : size_t(L.stride) * NC);  // rows laid out as the level's
     for (int y = y0; y < y1; ++y) {
       float* rows[NC];
       for (int c = 0; c < NC; ++c)
-        rows[c] = out ? &(*out)[c * n + L.at(0, y)] : &buffer[size_t(c) * L.w];
+        rows[c] = out ? &(*out)[c * n + L.at(0, y)] : &buffer[size_t(c) * L.stride];
       float norms[NC];
       residual_row(l, y, b_planes, e_planes, rows, row_norms ? norms : nullptr);
       if (row_norms)
@@ -1511,10 +1576,12 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   const Prolongation& P = prolong_[l];
   const size_t nc = C.padded();
   const int cs = C.stride;
+  // Where a fine row's odd points start, from its x = 0 (0: the row is in order).
+  const int odd_at = levels_[l].odd ? levels_[l].odd - Level::kLeft : 0;
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
-  // Sixteen coarse points at a time: the fine rows' even and odd points gathered from 32 in
-  // registers, and the sum below term by term in its order (the compiler contracts it to the
-  // same chain of fused multiply-adds).
+  // Sixteen coarse points at a time: the fine rows' even and odd points loaded apart (or gathered
+  // from 32 in registers), and the sum below term by term in its order (the compiler contracts
+  // it to the same chain of fused multiply-adds).
   const int fw = levels_[l].w;  // fine rows are readable from x = -1 to fw
   const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
   const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
@@ -1527,6 +1594,7 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
     const size_t kc = C.at(I, J);
     const __mmask16 in = lanes(C.w - I);
     const auto load = [&](const Plane& v, size_t k) { return _mm512_maskz_loadu_ps(in, &v[k]); };
+    const auto load_at = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
     for (const Plane* q : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
       prefetch(q->data(), kc + cs);  // the next coarse row's
     const __m512 x0 = load(P.x0, kc), x1 = load(P.x1, kc - 1), y0 = load(P.y0, kc),
@@ -1535,8 +1603,10 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
     const __mmask16 alive =
         _mm_test_epi8_mask(_mm_maskz_loadu_epi8(in, &C.alive[kc]), _mm_set1_epi8(1));
     const int x = 2 * I;
-    // Fine points x + 2i + offset, i = 0..15, of a row (offset -1, 0 or 1).
+    // Fine points x + 2i + offset, i = 0..15, of a row (offset -1, 0 or 1): on the finest level
+    // sixteen of one half of the row (Level::odd), elsewhere gathered from 32 in order.
     const auto fine = [&](const float* r, int offset, const __m512i& pick) {
+      if (odd_at) return load_at(r + (offset == 0 ? I : odd_at + I + (offset - 1) / 2));
       const int o = x + offset - (offset == 1 ? 1 : 0);  // the first of the 32 loaded
       const __m512 lo = _mm512_maskz_loadu_ps(lanes(fw + 1 - o), r + o);
       const __m512 hi = _mm512_maskz_loadu_ps(lanes(fw + 1 - o - 16), r + o + 16);
@@ -1557,16 +1627,18 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   }
   return;
 #endif
+  // Fine point x of a row, for x in [-1, w].
+  const auto at = [&](int x) { return odd_at ? (x & 1 ? odd_at : 0) + (x >> 1) : x; };
   for (int I = 0; I < C.w; ++I) {
     const size_t kc = C.at(I, J);
-    const int x = 2 * I;
+    const int x = at(2 * I), east = at(2 * I + 1), west = at(2 * I - 1);
     for (int c = 0; c < NC; ++c) {
       const float *rn = north[c], *r0 = centre[c], *rs = south[c];
       float v = 0.0f;
       if (C.alive[kc])
-        v = r0[x] + P.x0[kc] * r0[x + 1] + P.x1[kc - 1] * r0[x - 1] + P.y0[kc] * rs[x] +
-            P.y1[kc - cs] * rn[x] + P.c00[kc] * rs[x + 1] + P.c10[kc - 1] * rs[x - 1] +
-            P.c01[kc - cs] * rn[x + 1] + P.c11[kc - cs - 1] * rn[x - 1];
+        v = r0[x] + P.x0[kc] * r0[east] + P.x1[kc - 1] * r0[west] + P.y0[kc] * rs[x] +
+            P.y1[kc - cs] * rn[x] + P.c00[kc] * rs[east] + P.c10[kc - 1] * rs[west] +
+            P.c01[kc - cs] * rn[east] + P.c11[kc - cs - 1] * rn[west];
       C.rhs[c * nc + kc] = v;
     }
   }
@@ -1598,28 +1670,40 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
   } else {
     ahead(P.x0), ahead(P.x1);
   }
-  for (int c = 0; c < NC; ++c) {
-    float* __restrict e = &F.e[c * nf + F.at(0, y)];
-    const float* __restrict ec = &C.e[c * nc + row];
-    if (!(y & 1)) {
-      const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
-      for (int I = 0; I < pairs; ++I) {
-        e[2 * I] += ec[I];
-        e[2 * I + 1] += x0[I] * ec[I] + x1[I] * ec[I + 1];
+  // The fine row's even points at even[k * I], its odd ones at odd[k * I]: k = 1 on the finest
+  // level (two halves, Level::odd), 2 elsewhere (in order).
+  const auto add = [&](auto step) {
+    constexpr int k = decltype(step)::value;
+    for (int c = 0; c < NC; ++c) {
+      float* __restrict even = &F.e[c * nf + F.vat(0, y)];
+      float* __restrict odd = &F.e[c * nf + F.vat(1, y)];
+      const float* __restrict ec = &C.e[c * nc + row];
+      if (!(y & 1)) {
+        const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
+#pragma GCC ivdep
+        for (int I = 0; I < pairs; ++I) {
+          even[k * I] += ec[I];
+          odd[k * I] += x0[I] * ec[I] + x1[I] * ec[I + 1];
+        }
+        if (F.w & 1) even[k * pairs] += ec[pairs];
+      } else {
+        const float* __restrict es = ec + cs;
+        const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
+        const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
+        const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
+#pragma GCC ivdep
+        for (int I = 0; I < pairs; ++I) {
+          even[k * I] += py0[I] * ec[I] + py1[I] * es[I];
+          odd[k * I] += c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
+        }
+        if (F.w & 1) even[k * pairs] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
       }
-      if (F.w & 1) e[F.w - 1] += ec[pairs];
-    } else {
-      const float* __restrict es = ec + cs;
-      const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
-      const float* __restrict c00 = &P.c00[row], * __restrict c10 = &P.c10[row];
-      const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
-      for (int I = 0; I < pairs; ++I) {
-        e[2 * I] += py0[I] * ec[I] + py1[I] * es[I];
-        e[2 * I + 1] += c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
-      }
-      if (F.w & 1) e[F.w - 1] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
     }
-  }
+  };
+  if (F.odd)
+    add(std::integral_constant<int, 1>{});
+  else
+    add(std::integral_constant<int, 2>{});
 }
 
 template <int NC>
@@ -1671,7 +1755,8 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
       for (int c = 0; c < NC; ++c)
         out[c] = rows[c] = &ring.rows[(size_t(slot) * NC + c) * fs] + Level::kLeft;
       if (ring.pass[slot] == pass && ring.y[slot] == row) return;
-      for (int c = 0; c < NC; ++c) rows[c][-1] = rows[c][F.w] = 0.0f;  // a level's row's ghosts
+      for (int c = 0; c < NC; ++c)
+        for (int g : F.ghosts()) rows[c][g] = 0.0f;  // a level's row's ghosts
       residual_row(l, row, &F.rhs, F.e, rows, nullptr);
       ring.pass[slot] = pass;
       ring.y[slot] = row;
@@ -1710,11 +1795,14 @@ std::array<double, NC> Multigrid<NC>::dot(const Plane& a, const Plane& b) const 
   for_rows(L.h, L.w * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int c = 0; c < NC; ++c) {
-        const float* __restrict pa = &a[c * n + L.at(0, y)];
-        const float* __restrict pb = &b[c * n + L.at(0, y)];
         float sum = 0;  // a row in float (vectorised), rows summed in double
+        for (const Level::Run& run : L.runs()) {
+          const size_t start = c * n + L.at(0, y) + (run.offset - Level::kLeft);
+          const float* __restrict pa = &a[start];
+          const float* __restrict pb = &b[start];
 #pragma omp simd reduction(+ : sum)
-        for (int x = 0; x < L.w; ++x) sum += pa[x] * pb[x];
+          for (int i = 0; i < run.count; ++i) sum += pa[i] * pb[i];
+        }
         rows[size_t(y) * NC + c] = sum;
       }
   });
@@ -1825,7 +1913,8 @@ void Multigrid<NC>::observe(const Plane* residual_padded, const SolveStats& st) 
   std::vector<float> planes(n * NC);
   for (int c = 0; c < NC; ++c)
     for (int y = 0; y < F.h; ++y)
-      std::copy_n(&padded[c * nf + F.at(0, y)], F.w, &planes[c * n + size_t(y) * F.w]);
+      for (int x = 0; x < F.w; ++x)
+        planes[c * n + size_t(y) * F.w + x] = padded[c * nf + F.vat(x, y)];
   options_.observer(int(st.residual_history.size()) - 1, planes);
 }
 
@@ -1916,7 +2005,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
       for (int c = 0; c < NC; ++c) r2[c] = b2[c] = _mm512_setzero_pd();
       for (int x = 0; x < W; x += 8) {
         const __mmask8 in = W - x >= 8 ? 0xFF : __mmask8((1u << (W - x)) - 1);
-        const size_t i = p.index(x, y), k = F.at(x, y);
+        const size_t i = p.index(x, y), k = F.vat(x, y), k_odd = F.vat(x + 1, y);
         const __mmask8 free = __mmask8(in & ~bits(&fixed_[i], in, 1));
         // East, west, south, north: the link is open (from a free pixel), the neighbour fixed.
         const __mmask8 west_in = x == 0 ? __mmask8(in & 0xFE) : in;
@@ -1949,7 +2038,15 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
             au = _mm512_mask_sub_pd(au, __mmask8(open[q] & ~fixed_nb[q]), au, un);
           }
           const __m512d r = _mm512_maskz_sub_pd(free, b, au);
-          _mm256_mask_storeu_ps(&r_padded[c * nf + k], in, _mm512_cvtpd_ps(r));
+          // x is even: the even lanes go to the row's even half, the odd ones to its odd half
+          // (compressed in registers: a compressing store is microcoded, and slow, on Zen 4).
+          const __m256 r32 = _mm512_cvtpd_ps(r);
+          const __mmask8 even = __mmask8(in & 0x55), odd = __mmask8(in & 0xAA);
+          _mm256_mask_storeu_ps(&r_padded[c * nf + k], __mmask8((1u << _mm_popcnt_u32(even)) - 1),
+                                _mm256_maskz_compress_ps(even, r32));
+          _mm256_mask_storeu_ps(&r_padded[c * nf + k_odd],
+                                __mmask8((1u << _mm_popcnt_u32(odd)) - 1),
+                                _mm256_maskz_compress_ps(odd, r32));
           r2[c] = _mm512_fmadd_pd(r, r, r2[c]);
           b2[c] = _mm512_fmadd_pd(b, b, b2[c]);
         }
@@ -1970,7 +2067,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < p.width; ++x) {
-        const size_t i = p.index(x, y), k = F.at(x, y);
+        const size_t i = p.index(x, y), k = F.vat(x, y);
         if (fixed_[i]) {
           for (int c = 0; c < NC; ++c) r_padded[c * nf + k] = 0.0f;
           continue;
@@ -2035,23 +2132,25 @@ float Multigrid<NC>::change_of_row(int y, Plane& before) const {
   const Level& L = levels_[0];
   const size_t n = L.padded();
   float m = 0;
-  for (int c = 0; c < NC; ++c) {
-    const float* __restrict e = &L.e[c * n + L.at(0, y)];
-    float* __restrict b = &before[c * n + L.at(0, y)];
-    if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
+  for (int c = 0; c < NC; ++c)
+    for (const Level::Run& run : L.runs()) {
+      const size_t start = c * n + L.at(0, y) + (run.offset - Level::kLeft);
+      const float* __restrict e = &L.e[start];
+      float* __restrict b = &before[start];
+      if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
 #pragma omp simd reduction(max : m)
-      for (int x = 0; x < L.w; ++x) {
-        m = std::max(m, std::abs(e[x]));
-        b[x] = e[x];
+        for (int i = 0; i < run.count; ++i) {
+          m = std::max(m, std::abs(e[i]));
+          b[i] = e[i];
+        }
+        continue;
       }
-      continue;
-    }
 #pragma omp simd reduction(max : m)
-    for (int x = 0; x < L.w; ++x) {
-      m = std::max(m, std::abs(e[x] - b[x]));
-      b[x] = e[x];
+      for (int i = 0; i < run.count; ++i) {
+        m = std::max(m, std::abs(e[i] - b[i]));
+        b[i] = e[i];
+      }
     }
-  }
   return m;
 }
 
@@ -2071,10 +2170,10 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   std::vector<double> row_norms(size_t(F.h) * NC, 0.0);
   std::vector<float> row_change(size_t(F.h), 0.0f);
   const RowHook measure = [&](int y) {
-    thread_local std::vector<float> buffer;
-    buffer.resize(size_t(F.w) * NC);
+    thread_local std::vector<float> buffer;  // rows laid out as the level's
+    buffer.resize(size_t(F.stride) * NC);
     float* out[NC];
-    for (int c = 0; c < NC; ++c) out[c] = &buffer[size_t(c) * F.w];
+    for (int c = 0; c < NC; ++c) out[c] = &buffer[size_t(c) * F.stride];
     float norms[NC];
     residual_row(0, y, &F.rhs, F.e, out, norms);
     for (int c = 0; c < NC; ++c) row_norms[size_t(y) * NC + c] = norms[c];
@@ -2101,9 +2200,9 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
         for (int J = J0; J < J1; ++J) {
           const float *north[NC], *centre[NC], *south[NC];  // ghost rows beyond the level: 0
           for (int c = 0; c < NC; ++c) {
-            north[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J - 1)];
-            centre[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J)];
-            south[c] = &L.rhs[c * L.padded() + L.at(0, 2 * J + 1)];
+            north[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J - 1)];
+            centre[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J)];
+            south[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J + 1)];
           }
           restrict_row(l, J, north, centre, south);
         }
@@ -2213,7 +2312,11 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
     for_rows(p.height, p.width * NC, [&](int y0, int y1) {
       for (int c = 0; c < NC; ++c)
         for (int y = y0; y < y1; ++y)
-          for (int x = 0; x < p.width; ++x) u[c * np + p.index(x, y)] += F.e[c * nf + F.at(x, y)];
+          for (const Level::Run& run : F.runs()) {
+            auto* __restrict to = &u[c * np + p.index(run.x0, y)];
+            const float* __restrict from = &F.e[c * nf + F.at(0, y) + (run.offset - Level::kLeft)];
+            for (int i = 0; i < run.count; ++i) to[run.dx * i] += from[i];
+          }
     });
   };
   std::vector<float> u32;
@@ -2277,7 +2380,7 @@ std::vector<double> Multigrid<NC>::factors(int cycles, unsigned seed) {
   for (int y = 0; y < F.h; ++y)
     for (int x = 0; x < F.w; ++x)
       for (int c = 0; c < NC; ++c)
-        if (F.alive[F.at(x, y)]) F.e[c * F.padded() + F.at(x, y)] = unit(rng);
+        if (F.alive[F.at(x, y)]) F.e[c * F.padded() + F.vat(x, y)] = unit(rng);
   b_norm_.fill(1.0);
   std::fill(F.rhs.begin(), F.rhs.end(), 0.0f);
   std::vector<double> out;
