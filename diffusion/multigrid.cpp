@@ -105,8 +105,9 @@ struct Level {
   Plane ae, as, ase, asw;  // empty on the finest level (see code)
   // The finest level's couplings are 0 or 1 (a link open between two free points, or not) and
   // its diagonal the count of open links, plus the anchor weight where there is one: `code` holds
-  // them in a byte a point, which the cycles read instead of 16 bytes of floats. There diag and
-  // inv_diag hold the diagonal only where a point is anchored (see diag_of()).
+  // them in a byte a point, which the cycles read instead of 16 bytes of floats. There diag holds
+  // the diagonal only where a point is anchored (see diag_of()), and inv_diag is empty (the
+  // cycles read pinv_diag below).
   Flags code;
   Flags alive;  // 1 on free points
   // Coarse levels: 1 where the point's stored stencil is the level's plain one (see
@@ -471,7 +472,7 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
   const size_t n = L.padded();
   std::vector<std::uint8_t> changed;
   if (full) {
-    for (auto* v : {&L.diag, &L.inv_diag, &L.pdiag, &L.pinv_diag}) assign_touched(*v, n, 0.0f);
+    for (auto* v : {&L.diag, &L.pdiag, &L.pinv_diag}) assign_touched(*v, n, 0.0f);
     for (auto* v : {&L.code, &L.alive, &L.pcode}) assign_touched(*v, n, std::uint8_t(0));
   } else {
     changed.assign(n, 0);
@@ -504,19 +505,21 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
       codes(0, 1, &none, W > 1 ? fixed_row + 1 : &one);
       if (W > 2) codes(1, W - 2, links, fixed_row + 2);
       if (W > 1) codes(W - 1, 1, links + W - 2, &one);
-      // The cycles' copy of the codes, even points then odd ones (Level::odd).
-      std::uint8_t *even = &L.pcode[L.vat(0, y)], *odd = &L.pcode[L.vat(1, y)];
-      for (int i = 0; i < L.even_count(); ++i) even[i] = code[2 * i];
-      for (int i = 0; i < L.odd_count(); ++i) odd[i] = code[2 * i + 1];
+      // The cycles' copy of the codes, even points then odd ones (Level::odd). Counts as locals:
+      // the byte stores may alias anything reached by reference.
+      std::uint8_t* __restrict even = &L.pcode[L.vat(0, y)], * __restrict odd =
+                                                                 &L.pcode[L.vat(1, y)];
+      const std::uint8_t* __restrict in_order = code;
+      const int evens = L.even_count(), odds = L.odd_count();
+      for (int i = 0; i < evens; ++i) even[i] = in_order[2 * i];
+      for (int i = 0; i < odds; ++i) odd[i] = in_order[2 * i + 1];
       // The diagonal of anchored points (elsewhere it is the code's: diag_of()).
       for (int x = 0; x < W; ++x) {
         if (!(code[x] & kCodeAnchored)) continue;
         const float diag = float(code[x] >> kCodeLinksShift) + weight[x];
-        bool c = update(L.diag[k0 + x], diag);
-        c |= update(L.inv_diag[k0 + x], 1.0f / diag);
-        if (changed_row) changed_row[x] |= c;
-        L.pdiag[L.vat(x, y)] = L.diag[k0 + x];
-        L.pinv_diag[L.vat(x, y)] = L.inv_diag[k0 + x];
+        if (update(L.diag[k0 + x], diag) && changed_row) changed_row[x] = 1;
+        L.pdiag[L.vat(x, y)] = diag;
+        L.pinv_diag[L.vat(x, y)] = 1.0f / diag;
       }
     }
   });
