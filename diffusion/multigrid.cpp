@@ -389,11 +389,15 @@ class Multigrid {
   // pointing at x = 0 of a row readable from x = -1 to w, zero outside the level).
   void restrict_row(int l, int J, const float* const north[NC], const float* const centre[NC],
                     const float* const south[NC]);
-  void prolongate_add(int l);         // levels_[l].e += P levels_[l+1].e
-  void prolongate_row(int l, int y);  // the same for row y of levels_[l]
+  // Row y of levels_[l].e += P levels_[l+1].e (kSet: = P levels_[l+1].e).
+  template <bool kSet>
+  void prolongate_row(int l, int y);
   void solve_coarsest();
   // `measure`: called for every finest row after the post-smoothing (see smooth()).
-  void vcycle(int l, const RowHook* measure = nullptr);
+  // With `from_coarse` (full multigrid), the level's correction starts as the prolongated
+  // correction of the next coarser level, which the pre-smoothing's wave writes a row just before
+  // its first stage reads it; otherwise it is the correction held.
+  void vcycle(int l, const RowHook* measure = nullptr, bool from_coarse = false);
   double relative(const std::array<double, NC>& norms) const;
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
@@ -1647,16 +1651,11 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   }
 }
 
-// Row by row, a cell (two fine points) at a time, so that the loops have no branch and
-// vectorise; the sums are the same, term by term, as point by point.
+// A cell (two fine points) at a time, so that the loops have no branch and vectorise; the sums
+// are the same, term by term, as point by point. With kSet the row's values are replaced by
+// 0 + P e_c, the bits of adding to a row of zeros (0 + -0 is +0), without the zeros' pass.
 template <int NC>
-void Multigrid<NC>::prolongate_add(int l) {
-  for_rows(levels_[l].h, levels_[l].w * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) prolongate_row(l, y);
-  });
-}
-
-template <int NC>
+template <bool kSet>
 void Multigrid<NC>::prolongate_row(int l, int y) {
   Level& F = levels_[l];
   const Level& C = levels_[l + 1];
@@ -1685,10 +1684,10 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
         const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          even[k * I] += ec[I];
-          odd[k * I] += x0[I] * ec[I] + x1[I] * ec[I + 1];
+          even[k * I] = (kSet ? 0.0f : even[k * I]) + ec[I];
+          odd[k * I] = (kSet ? 0.0f : odd[k * I]) + (x0[I] * ec[I] + x1[I] * ec[I + 1]);
         }
-        if (F.w & 1) even[k * pairs] += ec[pairs];
+        if (F.w & 1) even[k * pairs] = (kSet ? 0.0f : even[k * pairs]) + ec[pairs];
       } else {
         const float* __restrict es = ec + cs;
         const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
@@ -1696,10 +1695,13 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
         const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          even[k * I] += py0[I] * ec[I] + py1[I] * es[I];
-          odd[k * I] += c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1];
+          even[k * I] = (kSet ? 0.0f : even[k * I]) + (py0[I] * ec[I] + py1[I] * es[I]);
+          odd[k * I] = (kSet ? 0.0f : odd[k * I]) +
+                       (c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1]);
         }
-        if (F.w & 1) even[k * pairs] += py0[pairs] * ec[pairs] + py1[pairs] * es[pairs];
+        if (F.w & 1)
+          even[k * pairs] =
+              (kSet ? 0.0f : even[k * pairs]) + (py0[pairs] * ec[pairs] + py1[pairs] * es[pairs]);
       }
     }
   };
@@ -1710,7 +1712,7 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
 }
 
 template <int NC>
-void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
+void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
   if (l + 1 == int(levels_.size())) {
     solve_coarsest();
     if (measure)
@@ -1779,13 +1781,15 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure) {
   };
   // Levels 2 and coarser are smoothed more (SolverOptions::coarse_smooth): they are cheap.
   const bool coarse = l >= 2;
-  smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows);
+  const RowHook interpolate = [&](int y) { prolongate_row<true>(l, y); };
+  smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
+         from_coarse ? &interpolate : nullptr);
   fill_zero(levels_[l + 1].e);
   vcycle(l + 1);
   // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
   // operator and can precondition conjugate gradients.
-  const RowHook prolongate = [&](int y) { prolongate_row(l, y); };
+  const RowHook prolongate = [&](int y) { prolongate_row<false>(l, y); };
   smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true, measure, &prolongate);
 }
 
@@ -2166,7 +2170,6 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   const int count = int(levels_.size());
   const bool by_error = options_.max_error > 0;
   Level& F = levels_[0];
-  fill_zero(F.e);
   // After a finest cycle: the residual's norms and the change since the last cycle, measured
   // row by row in the post-smoothing's wave while the rows are in cache (the same sums as
   // residual_norms and change_since, without two more passes over the finest level).
@@ -2194,7 +2197,11 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     if (previous_.size() != F.e.size()) assign_touched(previous_, F.e.size(), 0.0f);
     previous_zero_ = true;
   }
-  if (!done() && options_.full_multigrid) {
+  // The correction starts at 0, or with FMG as the coarser levels' answer (written by the
+  // finest V-cycle's first pass).
+  const bool full_multigrid = !done() && options_.full_multigrid;
+  if (!full_multigrid) fill_zero(F.e);
+  if (full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
     for (int l = 0; l + 1 < count; ++l) {
@@ -2214,9 +2221,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     fill_zero(levels_.back().e);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
-      if (l > 0) fill_zero(levels_[l].e);  // F.e is 0 (above)
-      prolongate_add(l);
-      vcycle(l, l == 0 ? &measure : nullptr);
+      vcycle(l, l == 0 ? &measure : nullptr, true);
       if (l == 0) previous_zero_ = false;
     }
     const bool measured = count > 1;  // (one level: no finest cycle ran)
