@@ -122,7 +122,7 @@ struct Level {
   // levels, whose rows are in order). A colour of the red-black smoother is then one half of a
   // row: sixteen of its points are one load and one store, their east and west neighbours two
   // loads from the other half, their north and south ones the same half of the rows around
-  // (docs/performance.md, "The finest level by columns": its relaxation 1.3-1.5x faster). Its
+  // (docs/performance.md, "The finest level by columns": its relaxation about 1.5x faster). Its
   // operator arrays (code, alive, diag, inv_diag) stay in order for the setup's products, and the
   // cycles read copies of the code and anchored diagonals in the values' layout.
   int odd = 0;
