@@ -1074,43 +1074,29 @@ void Multigrid<NC>::solve_coarsest() {
   }
 }
 
-// The couplings of one row of a level to its 4 (5-point) or 8 (9-point) neighbours, and
-// sum_q a_pq e_q over them for every point of the row (vectorises: contiguous loads).
+// The couplings of one row of a coarse (9-point) level to its eight neighbours, and
+// sum_q a_pq e_q over them for every point of the row (vectorises: contiguous loads). (The
+// finest level's come from its codes: finest_coefficients.)
 struct RowCouplings {
   const float *ae, *aw, *as, *an, *ase, *anw, *asw, *ane;
   int stride;
-  bool nine_point;
 
-  RowCouplings(const float* east, const float* west, const float* south, const float* north,
-               int row_stride)
-      : ae(east),
-        aw(west),
-        as(south),
-        an(north),
-        ase(nullptr),
-        anw(nullptr),
-        asw(nullptr),
-        ane(nullptr),
-        stride(row_stride),
-        nine_point(false) {}
   RowCouplings(const Level& L, size_t row)
       : ae(&L.ae[row]),
         aw(&L.ae[row - 1]),
         as(&L.as[row]),
         an(&L.as[row - L.stride]),
-        ase(L.nine_point ? &L.ase[row] : nullptr),
-        anw(L.nine_point ? &L.ase[row - L.stride - 1] : nullptr),
-        asw(L.nine_point ? &L.asw[row] : nullptr),
-        ane(L.nine_point ? &L.asw[row - L.stride + 1] : nullptr),
-        stride(L.stride),
-        nine_point(L.nine_point) {}
+        ase(&L.ase[row]),
+        anw(&L.ase[row - L.stride - 1]),
+        asw(&L.asw[row]),
+        ane(&L.asw[row - L.stride + 1]),
+        stride(L.stride) {}
 
   void neighbour_sum(const float* __restrict e, float* __restrict out, int w) const {
     const int s = stride;
     const float* __restrict pe = ae, * __restrict pw = aw, * __restrict ps = as, * __restrict pn = an;
     for (int x = 0; x < w; ++x)
       out[x] = pe[x] * e[x + 1] + pw[x] * e[x - 1] + ps[x] * e[x + s] + pn[x] * e[x - s];
-    if (!nine_point) return;
     const float* __restrict pse = ase, * __restrict pnw = anw, * __restrict psw = asw, * __restrict pne = ane;
     for (int x = 0; x < w; ++x)
       out[x] += pse[x] * e[x + s + 1] + pnw[x] * e[x - s - 1] + psw[x] * e[x + s - 1] +
