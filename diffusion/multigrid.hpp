@@ -115,7 +115,7 @@ Solution solve_multigrid(const Problem& problem, const SolverOptions& options = 
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
                          std::vector<float>&& initial_guess);
 
-// Frees the workspaces that solves keep between calls (about 78 MB at 1024², three channels):
+// Frees the workspaces that solves keep between calls (about 84 MB at 1024², three channels):
 // the next solve builds a new one. For the end of a batch, e.g. before `wisp render`'s previews.
 void release_solver_workspaces();
 
