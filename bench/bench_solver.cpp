@@ -112,8 +112,9 @@ int run_solver(const std::vector<std::string>& args) {
       }
       return "[" + out + "]";
     };
-    std::printf(", \"residuals\": %s, \"error_estimates_255\": %s",
-                list(stats.residual_history, 1).c_str(), list(stats.error_estimates, 255).c_str());
+    std::printf(", \"residuals\": %s, \"error_estimates_255\": %s, \"level_ms\": %s",
+                list(stats.residual_history, 1).c_str(), list(stats.error_estimates, 255).c_str(),
+                list(stats.level_ms, 1).c_str());
     if (n <= cg_max) {
       const auto ldlt =
           diffusion::solve_reference(problem, diffusion::ReferenceMethod::SimplicialLDLT);

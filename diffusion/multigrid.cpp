@@ -351,6 +351,7 @@ class Multigrid {
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   Plane& previous_;                     // the correction before a cycle (SolverOptions::max_error)
   bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
+  std::vector<double> level_ms_;        // SolveStats::level_ms
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   std::vector<size_t> coarse_points_;  // its free points (at()), and where their values are (vat())
@@ -1700,7 +1701,9 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
 template <int NC>
 void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
   if (l + 1 == int(levels_.size())) {
+    const auto t0 = Clock::now();
     solve_coarsest();
+    level_ms_[l] += ms_since(t0);
     if (measure)
       for (int y = 0; y < levels_[l].h; ++y) (*measure)(y);
     return;
@@ -1768,15 +1771,19 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
   // Levels 2 and coarser are smoothed more (SolverOptions::coarse_smooth): they are cheap.
   const bool coarse = l >= 2;
   const RowHook interpolate = [&](int y) { prolongate_row<true>(l, y); };
+  auto t0 = Clock::now();
   smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
          from_coarse ? &interpolate : nullptr);
   fill_zero(levels_[l + 1].e);
+  level_ms_[l] += ms_since(t0);
   vcycle(l + 1);
+  t0 = Clock::now();
   // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
   // operator and can precondition conjugate gradients.
   const RowHook prolongate = [&](int y) { prolongate_row<false>(l, y); };
   smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true, measure, &prolongate);
+  level_ms_[l] += ms_since(t0);
 }
 
 // Per-channel dot products on the finest level, summed row by row in a fixed order.
@@ -1958,6 +1965,7 @@ void Multigrid<NC>::setup() {
       if (!reuse || v->size() != L.padded() * NC) assign_touched(*v, L.padded() * NC, 0.0f);
   ws_.width = p.width;
   ws_.height = p.height;
+  level_ms_.assign(levels_.size(), 0.0);
 }
 
 // r = b - A u on the free pixels of the finest level, in double precision, where b = -g plus the
@@ -2361,6 +2369,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   if (!by_error) st.converged = rel <= options_.tolerance;
   out.planes = std::move(u32);
   st.solve_ms = ms_since(t_solve);
+  st.level_ms = level_ms_;
   return out;
 }
 

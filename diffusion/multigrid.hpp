@@ -88,6 +88,10 @@ struct SolveStats {
   std::vector<double> error_estimates;
   double setup_ms = 0;
   double solve_ms = 0;
+  // Where the cycles' time went, per level (finest first): each level's own passes (its
+  // smoothing, with the residual, restriction and prolongation that run inside those waves; the
+  // coarsest level's exact solve), summed over the solve. Their sum is most of solve_ms.
+  std::vector<double> level_ms;
   bool converged = false;
 };
 

@@ -111,6 +111,7 @@ void run_diffuse(const DiffuseArgs& a) {
     j["solver"] = {{"levels", st.solver.levels},
                    {"cycles", st.solver.cycles},
                    {"setup_ms", st.solver.setup_ms},
+                   {"level_ms", st.solver.level_ms},
                    {"initial_residual", st.solver.initial_residual},
                    {"final_residual", st.solver.final_residual},
                    {"residual_history", st.solver.residual_history},
