@@ -623,3 +623,16 @@ TEST_CASE("solves side by side give the answers each gives alone", "[multigrid]"
     CHECK(side == alone);
   }
 }
+
+TEST_CASE("the cycles' time is reported by level, within the solve's time", "[multigrid]") {
+  const Problem p = random_layout(128, 3, 6, false);
+  const Solution s = solve_multigrid(p);
+  REQUIRE(s.stats.level_ms.size() == size_t(s.stats.levels));
+  double sum = 0;
+  for (double t : s.stats.level_ms) {
+    CHECK(t >= 0);
+    sum += t;
+  }
+  CHECK(s.stats.level_ms.front() > 0);  // the finest level's passes ran
+  CHECK(sum <= s.stats.solve_ms);
+}
