@@ -123,8 +123,8 @@ struct Level {
   // row: sixteen of its points are one load and one store, their east and west neighbours two
   // loads from the other half, their north and south ones the same half of the rows around
   // (docs/performance.md, "The finest level by columns": its relaxation about 1.5x faster). Its
-  // operator arrays (code, alive, diag, inv_diag) stay in order for the setup's products, and the
-  // cycles read copies of the code and anchored diagonals in the values' layout.
+  // operator arrays (code, alive, diag) stay in order for the setup's products, and the cycles
+  // read copies of the code and anchored diagonals in the values' layout.
   int odd = 0;
   Flags pcode;             // finest: code, at vat()
   Plane pdiag, pinv_diag;  // finest: diag and inv_diag at vat(), where anchored
@@ -143,14 +143,14 @@ struct Level {
   }
   int even_count() const { return (w + 1) / 2; }
   int odd_count() const { return w / 2; }
-  // The runs of a row's values: `count` points from `offset` past the row's start, point i at
-  // x = x0 + dx * i. One run on the coarse levels, two on the finest.
+  // The runs of a row's values: `count` points from `offset` past the row's x = 0 (at()), point
+  // i at x = x0 + dx * i. One run on the coarse levels, two on the finest.
   struct Run {
     int offset, count, x0, dx;
   };
   std::array<Run, 2> runs() const {
-    if (odd == 0) return {Run{kLeft, w, 0, 1}, Run{0, 0, 0, 1}};
-    return {Run{kLeft, even_count(), 0, 2}, Run{odd, odd_count(), 1, 2}};
+    if (odd == 0) return {Run{0, w, 0, 1}, Run{0, 0, 0, 1}};
+    return {Run{0, even_count(), 0, 2}, Run{odd - kLeft, odd_count(), 1, 2}};
   }
   // The ghost values of a row (relative to its x = 0) that a pass reads: 0 in any row array.
   std::array<int, 3> ghosts() const {
@@ -512,8 +512,8 @@ std::vector<std::uint8_t> Multigrid<NC>::build_finest(const std::vector<std::uin
       if (W > 1) codes(W - 1, 1, links + W - 2, &one);
       // The cycles' copy of the codes, even points then odd ones (Level::odd). Counts as locals:
       // the byte stores may alias anything reached by reference.
-      std::uint8_t* __restrict even = &L.pcode[L.vat(0, y)], * __restrict odd =
-                                                                 &L.pcode[L.vat(1, y)];
+      std::uint8_t* __restrict even = &L.pcode[L.vat(0, y)];
+      std::uint8_t* __restrict odd = &L.pcode[L.vat(1, y)];
       const std::uint8_t* __restrict in_order = code;
       const int evens = L.even_count(), odds = L.odd_count();
       for (int i = 0; i < evens; ++i) even[i] = in_order[2 * i];
@@ -1164,17 +1164,24 @@ inline Coefficients1 finest_coefficients(const Level& F, const HalfRow& r, int i
   return {here & kCodeEast ? 1.0f : 0.0f, west & kCodeEast ? 1.0f : 0.0f,
           here & kCodeSouth ? 1.0f : 0.0f, north & kCodeSouth ? 1.0f : 0.0f, d};
 }
+// Its four neighbours' sum at point q of a half row, in RowCouplings::neighbour_sum's order: east
+// and west from the other half's `o`, south and north from the rows around (stride s).
+inline float finest_edge_sum(const Coefficients1& k, const float* q, const float* o, int west,
+                             int east, int s) {
+  return k.e * o[east] + k.w * o[west] + k.s * q[s] + k.n * q[-s];
+}
 
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
-// The stencil's sums at sixteen points of channel row `ec` (stride s), in the scalar loops' order:
-// the four edge neighbours', and the four corner neighbours' of the 9-point levels.
+// The stencil's sums at sixteen points, in the scalar loops' order: the four edge neighbours'
+// (west and east at `west` and `east`, south and north a row of stride s beyond and before
+// `centre`), and the four corner neighbours' of the 9-point levels (around channel row `ec`).
 template <class Load>
-inline __m512 edge_sum(__m512 pw, __m512 pe, __m512 ps, __m512 pn, const float* ec, int s,
-                       const Load& load) {
-  __m512 t = _mm512_mul_ps(pw, load(ec - 1));
-  t = _mm512_fmadd_ps(pe, load(ec + 1), t);
-  t = _mm512_fmadd_ps(ps, load(ec + s), t);
-  return _mm512_fmadd_ps(pn, load(ec - s), t);
+inline __m512 edge_sum(__m512 pw, __m512 pe, __m512 ps, __m512 pn, const float* west,
+                       const float* east, const float* centre, int s, const Load& load) {
+  __m512 t = _mm512_mul_ps(pw, load(west));
+  t = _mm512_fmadd_ps(pe, load(east), t);
+  t = _mm512_fmadd_ps(ps, load(centre + s), t);
+  return _mm512_fmadd_ps(pn, load(centre - s), t);
 }
 template <class Load>
 inline __m512 corner_sum(__m512 pnw, __m512 pse, __m512 psw, __m512 pne, const float* ec, int s,
@@ -1218,17 +1225,12 @@ void Multigrid<NC>::relax_finest_row(Level& F, int y, int half) {
   for (int i = 0; i < r.count; i += 16) {
     const __mmask16 in = r.count - i >= 16 ? 0xFFFF : __mmask16((1u << (r.count - i)) - 1);
     const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
-    // The rows that the next row's relaxation reads first.
-    for (int c = 0; c < NC; ++c)
-      prefetch(e[c], 2 * s + i), prefetch(across[c], 2 * s + i), prefetch(b[c], s + i);
+    // (No prefetch: the hardware prefetcher follows the half rows; docs/performance.md.)
     const Coefficients16 k = finest_coefficients(F, r, i, in, true);
     for (int c = 0; c < NC; ++c) {
       float* q = e[c] + i;
       const float* o = across[c] + i;
-      __m512 t = _mm512_mul_ps(k.w, load(o + west));
-      t = _mm512_fmadd_ps(k.e, load(o + east), t);
-      t = _mm512_fmadd_ps(k.s, load(q + s), t);
-      t = _mm512_fmadd_ps(k.n, load(q - s), t);
+      const __m512 t = edge_sum(k.w, k.e, k.s, k.n, o + west, o + east, q, s, load);
       _mm512_mask_storeu_ps(q, in, _mm512_mul_ps(_mm512_add_ps(load(b[c] + i), t), k.d));
     }
   }
@@ -1236,8 +1238,7 @@ void Multigrid<NC>::relax_finest_row(Level& F, int y, int half) {
   for (int i = 0; i < r.count; ++i) {
     const Coefficients1 k = finest_coefficients(F, r, i, true);
     for (int c = 0; c < NC; ++c) {
-      const float t = k.e * across[c][i + east] + k.w * across[c][i + west] + k.s * e[c][i + s] +
-                      k.n * e[c][i - s];
+      const float t = finest_edge_sum(k, e[c] + i, across[c] + i, west, east, s);
       e[c][i] = (b[c][i] + t) * k.d;
     }
   }
@@ -1320,7 +1321,7 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
       const __m512 pse = load(a.ase), pnw = load(a.anw), psw = load(a.asw), pne = load(a.ane);
       for (int c = 0; c < NC; ++c) {
         const float* ec = e[c];
-        __m512 t = edge_sum(pw, pe, ps, pn, ec, s, load);
+        __m512 t = edge_sum(pw, pe, ps, pn, ec - 1, ec + 1, ec, s, load);
         const __m512 u = corner_sum(pnw, pse, psw, pne, ec, s, load);
         u_now[c] = u;
         t = _mm512_add_ps(t, u);
@@ -1472,10 +1473,7 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
         const Coefficients16 k = finest_coefficients(L, r, i, in, false);
         for (int c = 0; c < NC; ++c) {
           const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
-          __m512 t = _mm512_mul_ps(k.w, load(o + west));
-          t = _mm512_fmadd_ps(k.e, load(o + east), t);
-          t = _mm512_fmadd_ps(k.s, load(q + s), t);
-          t = _mm512_fmadd_ps(k.n, load(q - s), t);
+          const __m512 t = edge_sum(k.w, k.e, k.s, k.n, o + west, o + east, q, s, load);
           const __m512 v =
               b_planes
                   ? _mm512_add_ps(
@@ -1489,7 +1487,7 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
         const Coefficients1 k = finest_coefficients(L, r, i, false);
         for (int c = 0; c < NC; ++c) {
           const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
-          const float t = k.e * o[east] + k.w * o[west] + k.s * q[s] + k.n * q[-s];
+          const float t = finest_edge_sum(k, q, o, west, east, s);
           out[c][to + i] =
               b_planes ? t + ((*b_planes)[c * n + r.own + i] - k.d * q[0]) : t - k.d * q[0];
         }
@@ -1515,7 +1513,7 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
     for (int c = 0; c < NC; ++c) {
       float sum = 0;
       for (const Level::Run& run : L.runs()) {
-        const float* __restrict r = out[c] + (run.offset - Level::kLeft);
+        const float* __restrict r = out[c] + run.offset;
 #pragma omp simd reduction(+ : sum)
         for (int i = 0; i < run.count; ++i) sum += r[i] * r[i];
       }
@@ -1661,6 +1659,8 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
   }
   // The fine row's even points at even[k * I], its odd ones at odd[k * I]: k = 1 on the finest
   // level (two halves, Level::odd), 2 elsewhere (in order).
+  // q = q + v, or with kSet q = 0 + v.
+  const auto put = [](float& q, float v) { q = (kSet ? 0.0f : q) + v; };
   const auto add = [&](auto step) {
     constexpr int k = decltype(step)::value;
     for (int c = 0; c < NC; ++c) {
@@ -1671,10 +1671,10 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
         const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          even[k * I] = (kSet ? 0.0f : even[k * I]) + ec[I];
-          odd[k * I] = (kSet ? 0.0f : odd[k * I]) + (x0[I] * ec[I] + x1[I] * ec[I + 1]);
+          put(even[k * I], ec[I]);
+          put(odd[k * I], x0[I] * ec[I] + x1[I] * ec[I + 1]);
         }
-        if (F.w & 1) even[k * pairs] = (kSet ? 0.0f : even[k * pairs]) + ec[pairs];
+        if (F.w & 1) put(even[k * pairs], ec[pairs]);
       } else {
         const float* __restrict es = ec + cs;
         const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
@@ -1682,13 +1682,11 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
         const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          even[k * I] = (kSet ? 0.0f : even[k * I]) + (py0[I] * ec[I] + py1[I] * es[I]);
-          odd[k * I] = (kSet ? 0.0f : odd[k * I]) +
-                       (c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1]);
+          put(even[k * I], py0[I] * ec[I] + py1[I] * es[I]);
+          put(odd[k * I],
+              c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1]);
         }
-        if (F.w & 1)
-          even[k * pairs] =
-              (kSet ? 0.0f : even[k * pairs]) + (py0[pairs] * ec[pairs] + py1[pairs] * es[pairs]);
+        if (F.w & 1) put(even[k * pairs], py0[pairs] * ec[pairs] + py1[pairs] * es[pairs]);
       }
     }
   };
@@ -1797,7 +1795,7 @@ std::array<double, NC> Multigrid<NC>::dot(const Plane& a, const Plane& b) const 
       for (int c = 0; c < NC; ++c) {
         float sum = 0;  // a row in float (vectorised), rows summed in double
         for (const Level::Run& run : L.runs()) {
-          const size_t start = c * n + L.at(0, y) + (run.offset - Level::kLeft);
+          const size_t start = c * n + L.at(0, y) + run.offset;
           const float* __restrict pa = &a[start];
           const float* __restrict pb = &b[start];
 #pragma omp simd reduction(+ : sum)
@@ -2135,7 +2133,7 @@ float Multigrid<NC>::change_of_row(int y, Plane& before) const {
   float m = 0;
   for (int c = 0; c < NC; ++c)
     for (const Level::Run& run : L.runs()) {
-      const size_t start = c * n + L.at(0, y) + (run.offset - Level::kLeft);
+      const size_t start = c * n + L.at(0, y) + run.offset;
       const float* __restrict e = &L.e[start];
       float* __restrict b = &before[start];
       if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
@@ -2316,7 +2314,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
         for (int y = y0; y < y1; ++y)
           for (const Level::Run& run : F.runs()) {
             auto* __restrict to = &u[c * np + p.index(run.x0, y)];
-            const float* __restrict from = &F.e[c * nf + F.at(0, y) + (run.offset - Level::kLeft)];
+            const float* __restrict from = &F.e[c * nf + F.at(0, y) + run.offset];
             for (int i = 0; i < run.count; ++i) to[run.dx * i] += from[i];
           }
     });
