@@ -143,14 +143,14 @@ struct Level {
   }
   int even_count() const { return (w + 1) / 2; }
   int odd_count() const { return w / 2; }
-  // The runs of a row's values: `count` points from `offset` past the row's x = 0 (at()), point
-  // i at x = x0 + dx * i. One run on the coarse levels, two on the finest.
+  // The runs of a row's values: `count` points from `offset` past the row's x = 0 (at()). One
+  // run on the coarse levels; two on the finest, its even points, then its odd ones.
   struct Run {
-    int offset, count, x0, dx;
+    int offset, count;
   };
   std::array<Run, 2> runs() const {
-    if (odd == 0) return {Run{0, w, 0, 1}, Run{0, 0, 0, 1}};
-    return {Run{0, even_count(), 0, 2}, Run{odd - kLeft, odd_count(), 1, 2}};
+    if (odd == 0) return {Run{0, w}, Run{0, 0}};
+    return {Run{0, even_count()}, Run{odd - kLeft, odd_count()}};
   }
   // The ghost values of a row (relative to its x = 0) that a pass reads: 0 in any row array.
   std::array<int, 3> ghosts() const {
@@ -241,15 +241,37 @@ std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
 struct PlainPoints {
   Flags flags;                  // per padded coarse point
   std::optional<size_t> model;  // none when no plain point is to be rebuilt
-  // Whether point kc takes the model's values instead of computing its own.
-  bool copied(size_t kc) const { return model && flags[kc] && kc != *model; }
+  // What the setup does at each padded coarse point: kCompute its prolongation cell and stencil,
+  // kCopy the model's (a plain point to be rebuilt that is not the model), or nothing (a point
+  // an incremental rebuild keeps). One byte a point, read through a plain pointer by the loops
+  // that build a level (a test of `flags`, `model` and the rebuild set at each point, through
+  // references, was most of the Galerkin product's time on a new drawing).
+  static constexpr std::uint8_t kCompute = 1, kCopy = 2;
+  std::vector<std::uint8_t> todo;
 };
 
 PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::uint8_t>* rebuild,
                          bool copies) {
   PlainPoints out;
   out.flags.assign(C.padded(), 0);
-  if (!copies || (F.nine_point && F.plain.empty())) return out;
+  out.todo.assign(C.padded(), 0);
+  const auto plan = [&] {
+    const std::uint8_t* wanted = rebuild ? rebuild->data() : nullptr;
+    const std::uint8_t* plain = out.flags.data();
+    const size_t model = out.model.value_or(SIZE_MAX);  // (never a point's index)
+    std::uint8_t* todo = out.todo.data();
+    for_rows(C.h, C.w, [&](int J0, int J1) {
+      for (int J = J0; J < J1; ++J)
+        for (size_t kc = C.at(0, J); kc < C.at(C.w, J); ++kc) {  // selects: it vectorises
+          const bool want = wanted ? wanted[kc] != 0 : true, copy = plain[kc] && kc != model;
+          todo[kc] = want ? (copy ? PlainPoints::kCopy : PlainPoints::kCompute) : 0;
+        }
+    });
+  };
+  if (!copies || (F.nine_point && F.plain.empty())) {
+    plan();
+    return out;
+  }
   const int fs = F.stride;
   // 1 where a fine point's stencil is not the plain one, for the points of row y: with & rather
   // than &&, no branch (ivdep: `bad` is none of the level's arrays).
@@ -313,6 +335,7 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
       out.model = k;
       break;
     }
+  plan();
   return out;
 }
 
@@ -650,20 +673,24 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
   // take the model's weights once it has them (before the centres, which read the edges').
   const auto cells = [&](const auto& body) {
     for_rows(C.h, C.w * 8, [&](int J0, int J1) {
+      const std::uint8_t* todo = plain.todo.data();
       for (int J = J0; J < J1; ++J)
         for (int I = 0; I < C.w; ++I) {
           const size_t kc = C.at(I, J);
-          if ((!rebuild || (*rebuild)[kc]) && !plain.copied(kc)) body(I, J, kc);
+          if (todo[kc] == PlainPoints::kCompute) body(I, J, kc);
         }
     });
   };
   const auto copy_plain = [&](std::initializer_list<Plane*> weights) {
     if (!plain.model) return;
     for_rows(C.h, C.w, [&](int J0, int J1) {
+      const std::uint8_t* todo = plain.todo.data();
+      const size_t k0 = C.at(0, J0), k1 = C.at(0, J1);
       for (Plane* v : weights) {
-        const float model = (*v)[*plain.model];
-        for (size_t kc = C.at(0, J0); kc < C.at(0, J1); ++kc)
-          if ((!rebuild || (*rebuild)[kc]) && plain.copied(kc)) (*v)[kc] = model;
+        float* const to = v->data();
+        const float model = to[*plain.model];
+        for (size_t kc = k0; kc < k1; ++kc)
+          if (todo[kc] == PlainPoints::kCopy) to[kc] = model;
       }
     });
   };
@@ -866,29 +893,34 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   else
     for (auto* v : {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw})
       assign_touched(*v, nc, 0.0f);
-  const auto wanted = [&](size_t kc) { return !rebuild || (*rebuild)[kc]; };
-  // Stores a coarse point's stencil (rebuilt points: noting which changed).
-  const auto store = [&](size_t kc, const float(&v)[6]) {
-    Plane* arrays[6] = {&C.diag, &C.inv_diag, &C.ae, &C.as, &C.ase, &C.asw};
-    bool c = false;
-    for (int m = 0; m < 6; ++m) c |= update((*arrays[m])[kc], v[m]);
-    if (rebuild) changed[kc] = c;
-  };
-  // Plain coarse points (plain_points) are computed once, at the model.
-  const auto computed = [&](int I, int J) {
-    const size_t kc = C.at(I, J);
-    return wanted(kc) && !plain.copied(kc);
+  // Stores a coarse point's stencil (rebuilt points: noting which changed). Made in each task
+  // with the arrays as its own values: a byte store may alias anything, and through references
+  // every store read the arrays' places again.
+  const auto stencil_store = [&] {
+    return [arrays = std::array<float*, 6>{C.diag.data(), C.inv_diag.data(), C.ae.data(),
+                                           C.as.data(), C.ase.data(), C.asw.data()},
+            changes = rebuild ? changed.data() : nullptr](size_t kc, const float(&v)[6]) {
+      bool c = false;
+      for (int m = 0; m < 6; ++m) c |= update(arrays[m][kc], v[m]);
+      if (changes) changes[kc] = c;
+    };
   };
   // Lane I + 1 holds column I, from -1 (a column of zeros: no fine point x = -1) to C.w.
   const int lanes = C.w + 2;
   // The fine points of each parity of x: x = 2I + parity < F.w.
   const int columns[2] = {(F.w + 1) / 2, F.w / 2};
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
+    const auto store = stencil_store();
+    // Plain coarse points (plain_points) are computed once, at the model.
+    const std::uint8_t *const todo = plain.todo.data(), *const alive = C.alive.data();
+    const int cw = C.w;
+    const auto computed = [todo, cs](int I, int J) {
+      return todo[size_t(J + 1) * cs + size_t(I + Level::kLeft)] == PlainPoints::kCompute;
+    };
     // The columns with a point to compute in any of the task's rows.
-    std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0), column_wanted(size_t(C.w), 0);
+    std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0), column_wanted(size_t(cw), 0);
     for (int J = J0; J < J1; ++J)
-      for (int I = 0; I < C.w; ++I)
-        if (computed(I, J)) column_wanted[I] = 1;
+      for (int I = 0; I < cw; ++I) column_wanted[I] |= computed(I, J);
     // Rows of A P of fine rows y_first .. y_first + y_count - 1 (those within 1 of a wanted coarse
     // row), each parity's lanes as columns.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
@@ -982,8 +1014,8 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
         }
         for (int I = i_lo; I < i_hi; ++I) {
           const size_t kc = k0 + I;
-          if (!computed(I, J)) continue;
-          if (!C.alive[kc]) {
+          if (todo[kc] != PlainPoints::kCompute) continue;
+          if (!alive[kc]) {
             if (rebuild) store(kc, {0, 0, 0, 0, 0, 0});
             continue;
           }
@@ -997,7 +1029,7 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     // curves, and one span from the first to the last of them computed most of a row for nothing.
     // Runs closer than kJoin columns are one (a run's fixed cost is its two edge lanes, and the
     // rows' set-up).
-    constexpr int kJoin = 8;
+    constexpr int kJoin = 32;
     for (int I = 0; I < C.w;) {
       if (!column_wanted[I]) {
         ++I;
@@ -1019,8 +1051,10 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   const float stencil[6] = {C.diag[model], C.inv_diag[model], C.ae[model],
                             C.as[model],   C.ase[model],      C.asw[model]};
   for_rows(C.h, C.w, [&](int J0, int J1) {
+    const auto store = stencil_store();
+    const std::uint8_t* const todo = plain.todo.data();
     for (size_t kc = C.at(0, J0); kc < C.at(0, J1); ++kc)
-      if (plain.copied(kc) && wanted(kc)) store(kc, stencil);
+      if (todo[kc] == PlainPoints::kCopy) store(kc, stencil);
   });
   return changed;
 }
@@ -1998,39 +2032,45 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
     return __mmask8(_mm_test_epi8_mask(_mm_maskz_loadu_epi8(m, q), _mm_set1_epi8(char(b))));
   };
   const int W = p.width;
+  // Plain pointers: the intrinsics' stores may alias anything, and with the vectors' own
+  // pointers read through references GCC loaded them again after every store.
+  const T* const u0 = u.data();
+  const float *const value = p.value.data(), *const rhs = p.rhs.empty() ? nullptr : p.rhs.data();
+  const float* const anchor = p.anchor_weight.data();
+  const std::uint8_t *const fixed = fixed_.data(), *const links = p.links.data();
+  float* const r0 = r_padded.data();
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       __m512d r2[NC], b2[NC];  // per lane; 0 where a pixel is not free (r and b are 0 there)
       for (int c = 0; c < NC; ++c) r2[c] = b2[c] = _mm512_setzero_pd();
+      const size_t row = p.index(0, y), even0 = F.vat(0, y), odd0 = F.vat(1, y);
       for (int x = 0; x < W; x += 8) {
         const __mmask8 in = W - x >= 8 ? 0xFF : __mmask8((1u << (W - x)) - 1);
-        const size_t i = p.index(x, y), k = F.vat(x, y), k_odd = F.vat(x + 1, y);
-        const __mmask8 free = __mmask8(in & ~bits(&fixed_[i], in, 1));
+        const size_t i = row + x, k = even0 + x / 2, k_odd = odd0 + x / 2;  // (x is even)
+        const __mmask8 free = __mmask8(in & ~bits(&fixed[i], in, 1));
         // East, west, south, north: the link is open (from a free pixel), the neighbour fixed.
         const __mmask8 west_in = x == 0 ? __mmask8(in & 0xFE) : in;
         const __mmask8 open[4] = {
-            __mmask8(free & bits(&p.links[i], in, kOpenEast)),
-            __mmask8(free & bits(&p.links[i] - 1, west_in, kOpenEast)),
-            __mmask8(free & bits(&p.links[i], in, kOpenSouth)),
-            y > 0 ? __mmask8(free & bits(&p.links[i] - W, in, kOpenSouth)) : __mmask8(0)};
+            __mmask8(free & bits(&links[i], in, kOpenEast)),
+            __mmask8(free & bits(&links[i] - 1, west_in, kOpenEast)),
+            __mmask8(free & bits(&links[i], in, kOpenSouth)),
+            y > 0 ? __mmask8(free & bits(&links[i] - W, in, kOpenSouth)) : __mmask8(0)};
         const std::ptrdiff_t nb[4] = {1, -1, W, -W};
         __mmask8 fixed_nb[4];
-        for (int q = 0; q < 4; ++q) fixed_nb[q] = bits(&fixed_[i] + nb[q], open[q], 1);
-        const __m512d w = widen(&p.anchor_weight[i], in);
+        for (int q = 0; q < 4; ++q) fixed_nb[q] = bits(&fixed[i] + nb[q], open[q], 1);
+        const __m512d w = widen(&anchor[i], in);
         const __mmask8 anchored = _mm512_mask_cmp_pd_mask(free, w, _mm512_setzero_pd(), _CMP_GT_OQ);
         for (int c = 0; c < NC; ++c) {
-          const T* uc = &u[c * np + i];
-          prefetch(uc, 2 * W), prefetch(p.value.data(), c * np + i + W);  // rows read next
+          const T* uc = &u0[c * np + i];
+          prefetch(uc, 2 * W), prefetch(value, c * np + i + W);  // rows read next
           const __m512d ui = load(uc, free);
           __m512d b = _mm512_setzero_pd(), au = _mm512_setzero_pd();
-          if (!p.rhs.empty())
-            b = _mm512_xor_pd(widen(&p.rhs[c * np + i], free), _mm512_set1_pd(-0.0));
+          if (rhs) b = _mm512_xor_pd(widen(&rhs[c * np + i], free), _mm512_set1_pd(-0.0));
           if (anchored) {
             au = _mm512_mask3_fmadd_pd(ui, w, au, anchored);
-            b = _mm512_mask3_fmadd_pd(w, widen(&p.value[c * np + i], anchored), b, anchored);
+            b = _mm512_mask3_fmadd_pd(w, widen(&value[c * np + i], anchored), b, anchored);
           }
-          for (int q = 0; q < 4; ++q) {
-            if (!open[q]) continue;
+          for (int q = 0; q < 4; ++q) {  // (no branch on open[q]: with no lane, no change)
             const __m512d un = load(uc + nb[q], open[q]);
             au = _mm512_mask_add_pd(au, open[q], au, ui);
             b = _mm512_mask_add_pd(b, __mmask8(open[q] & fixed_nb[q]), b, un);
@@ -2041,10 +2081,9 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
           // (compressed in registers: a compressing store is microcoded, and slow, on Zen 4).
           const __m256 r32 = _mm512_cvtpd_ps(r);
           const __mmask8 even = __mmask8(in & 0x55), odd = __mmask8(in & 0xAA);
-          _mm256_mask_storeu_ps(&r_padded[c * nf + k], __mmask8((1u << _mm_popcnt_u32(even)) - 1),
+          _mm256_mask_storeu_ps(&r0[c * nf + k], __mmask8((1u << _mm_popcnt_u32(even)) - 1),
                                 _mm256_maskz_compress_ps(even, r32));
-          _mm256_mask_storeu_ps(&r_padded[c * nf + k_odd],
-                                __mmask8((1u << _mm_popcnt_u32(odd)) - 1),
+          _mm256_mask_storeu_ps(&r0[c * nf + k_odd], __mmask8((1u << _mm_popcnt_u32(odd)) - 1),
                                 _mm256_maskz_compress_ps(odd, r32));
           r2[c] = _mm512_fmadd_pd(r, r, r2[c]);
           b2[c] = _mm512_fmadd_pd(b, b, b2[c]);
@@ -2299,24 +2338,36 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
             start[o + i] = given[i] ? v : (fixed[i] ? 0.0f : g);
           }
         } else {
+          // The value loaded everywhere and then selected: a load only where given[i] holds
+          // kept this loop scalar, a branch a pixel (GCC 12).
 #pragma GCC ivdep
-          for (size_t i = i0; i < i1; ++i) start[o + i] = given[i] ? value[o + i] : 0.0f;
+          for (size_t i = i0; i < i1; ++i) {
+            const float v = value[o + i];
+            start[o + i] = given[i] ? v : 0.0f;
+          }
         }
       }
     });
   };
-  // u += the correction solved on the finest level.
+  // u += the correction solved on the finest level, whose rows hold their even points, then
+  // their odd ones (Level::odd): each pair of pixels takes one of each, so that the loop
+  // vectorises (a loop per run, with its stride a variable, did not).
   const auto add_correction = [&](auto& u) {
     const Level& F = levels_[0];
     const size_t nf = F.padded();
+    const int pairs = F.odd_count();
     for_rows(p.height, p.width * NC, [&](int y0, int y1) {
       for (int c = 0; c < NC; ++c)
-        for (int y = y0; y < y1; ++y)
-          for (const Level::Run& run : F.runs()) {
-            auto* __restrict to = &u[c * np + p.index(run.x0, y)];
-            const float* __restrict from = &F.e[c * nf + F.at(0, y) + run.offset];
-            for (int i = 0; i < run.count; ++i) to[run.dx * i] += from[i];
+        for (int y = y0; y < y1; ++y) {
+          auto* __restrict to = &u[c * np + p.index(0, y)];
+          const float* __restrict even = &F.e[c * nf + F.vat(0, y)];
+          const float* __restrict odd = &F.e[c * nf + F.vat(1, y)];
+          for (int i = 0; i < pairs; ++i) {
+            to[2 * i] += even[i];
+            to[2 * i + 1] += odd[i];
           }
+          if (F.w & 1) to[F.w - 1] += even[pairs];
+        }
     });
   };
   std::vector<float> u32;
