@@ -1,6 +1,10 @@
 // Problem construction helpers (see problem.hpp).
 #include "diffusion/problem.hpp"
 
+#if defined(__AVX512BW__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -58,6 +62,26 @@ void add_gradient_field(Problem& p, const std::vector<float>& wx, const std::vec
   }
 }
 
+namespace {
+
+// The last pixel of the run that starts at x0 of a row of W pixels: links are open east from x0
+// up to it, and not from it (or it is the row's last pixel). Sixty-four links a step where
+// AVX-512 is there: the byte loop alone was a quarter of reached_from_fixed's time.
+int run_end(const std::uint8_t* links, int x0, int W) {
+  int x = x0;
+#if defined(__AVX512BW__)
+  for (; x + 64 < W; x += 64) {  // links x .. x + 63, none of them the row's last pixel's
+    const __mmask64 closed =
+        _mm512_testn_epi8_mask(_mm512_loadu_si512(links + x), _mm512_set1_epi8(char(kOpenEast)));
+    if (closed) return x + __builtin_ctzll(closed);
+  }
+#endif
+  while (x + 1 < W && (links[x] & kOpenEast)) ++x;
+  return x;
+}
+
+}  // namespace
+
 // Connected components of the pixels by runs: a run is a piece of a row joined by open east links,
 // and two runs of neighbouring rows are merged (union-find) when an open south link joins them
 // anywhere along their overlap. A pixel is reached when its component holds a fixed or anchored
@@ -85,8 +109,7 @@ std::vector<std::uint8_t> reached_from_fixed(const Problem& p) {
     here.clear();
     size_t a = 0;  // the first run of the row above that can overlap this one
     for (int x0 = 0; x0 < W;) {
-      int x1 = x0;
-      while (x1 + 1 < W && (links[x1] & kOpenEast)) ++x1;
+      const int x1 = run_end(links, x0, W);
       const int run = int(parent.size());
       parent.push_back(run);
       start.push_back(int(row) + x0);
