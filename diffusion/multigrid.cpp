@@ -914,13 +914,12 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     // Plain coarse points (plain_points) are computed once, at the model.
     const std::uint8_t *const todo = plain.todo.data(), *const alive = C.alive.data();
     const int cw = C.w;
-    const auto computed = [todo, cs](int I, int J) {
-      return todo[size_t(J + 1) * cs + size_t(I + Level::kLeft)] == PlainPoints::kCompute;
-    };
     // The columns with a point to compute in any of the task's rows.
     std::vector<std::uint8_t> row_wanted(size_t(J1 - J0), 0), column_wanted(size_t(cw), 0);
-    for (int J = J0; J < J1; ++J)
-      for (int I = 0; I < cw; ++I) column_wanted[I] |= computed(I, J);
+    for (int J = J0; J < J1; ++J) {
+      const std::uint8_t* row = todo + C.at(0, J);
+      for (int I = 0; I < cw; ++I) column_wanted[I] |= row[I] == PlainPoints::kCompute;
+    }
     // Rows of A P of fine rows y_first .. y_first + y_count - 1 (those within 1 of a wanted coarse
     // row), each parity's lanes as columns.
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
@@ -945,9 +944,10 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
       const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
       // The task's rows with a point to compute in these columns.
       for (int J = J0; J < J1; ++J) {
+        const std::uint8_t* row = todo + C.at(0, J);
         row_wanted[J - J0] = 0;
         for (int I = i_lo; I < i_hi && !row_wanted[J - J0]; ++I)
-          row_wanted[J - J0] = computed(I, J);
+          row_wanted[J - J0] = row[I] == PlainPoints::kCompute;
       }
       for (int y = y_first; y < y_first + y_count; ++y) {
         const int J = y >> 1;  // the wanted rows that read fine row y: J and, for odd y, J + 1
