@@ -1153,6 +1153,12 @@ HalfRow half_row(const Level& F, int y, int half) {
 }
 
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
+// The lanes of a block of sixteen that hold points, with `left` points left in the row from the
+// block's first (none when left <= 0).
+inline __mmask16 lanes_left(int left) {
+  return left >= 16 ? __mmask16(0xFFFF) : left <= 0 ? __mmask16(0) : __mmask16((1u << left) - 1);
+}
+
 // The finest level's operator at points i .. i+15 of a half row (0 in the lanes outside `in`):
 // the couplings to the four neighbours, and the diagonal or its inverse.
 struct Coefficients16 {
@@ -1257,7 +1263,7 @@ void Multigrid<NC>::relax_finest_row(Level& F, int y, int half) {
   // Sixteen points at a time, every lane one of this half's, with the scalar loop's operations in
   // its order (the compiler contracts them to the same fused multiply-adds): the same bits.
   for (int i = 0; i < r.count; i += 16) {
-    const __mmask16 in = r.count - i >= 16 ? 0xFFFF : __mmask16((1u << (r.count - i)) - 1);
+    const __mmask16 in = lanes_left(r.count - i);
     const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
     // (No prefetch: the hardware prefetcher follows the half rows; docs/performance.md.)
     const Coefficients16 k = finest_coefficients(F, r, i, in, true);
@@ -1329,9 +1335,6 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
   const RowCouplings a(L, row);
   const float* id = &L.inv_diag[row];
   const __mmask16 second = first ? 0x5555 : 0xAAAA;
-  const auto lanes = [&](int x) {
-    return w - x >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (w - x)) - 1);
-  };
   // Per channel: the first parity's values of the block before (`last`) and of the one before
   // that (`before`; its lane 15 is the west neighbour of the block's lane 0), and the block
   // before's diagonal-neighbour sum. Outside the row: the ghost values.
@@ -1346,7 +1349,7 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
     if (x < w) {
       // The first parity of block x, as relax_row computes it (every lane; the first parity's
       // lanes are kept).
-      const __mmask16 in = lanes(x);
+      const __mmask16 in = lanes_left(w - x);
       const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + x); };
       // The rows that the next row's relaxation reads first.
       for (const float* q : {a.ae, a.as, a.ase, a.asw, id}) prefetch(q, s + x);
@@ -1370,7 +1373,7 @@ void Multigrid<NC>::relax_row_pair(Level& L, int y, int first) {
       // The second parity of block x - 16: its west and east neighbours are of the first parity,
       // in `last` and its neighbours in registers. Stored with the block's first parity.
       const int xb = x - 16;
-      const __mmask16 in = lanes(xb);
+      const __mmask16 in = lanes_left(w - xb);
       const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q + xb); };
       const __m512 pe = load(a.ae), pw = load(a.aw), ps = load(a.as), pn = load(a.an), d = load(id);
       for (int c = 0; c < NC; ++c) {
@@ -1502,7 +1505,7 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
       const int west = r.half - 1, east = r.half, to = int(r.own - row);
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
       for (int i = 0; i < r.count; i += 16) {
-        const __mmask16 in = r.count - i >= 16 ? 0xFFFF : __mmask16((1u << (r.count - i)) - 1);
+        const __mmask16 in = lanes_left(r.count - i);
         const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
         const Coefficients16 k = finest_coefficients(L, r, i, in, false);
         for (int c = 0; c < NC; ++c) {
@@ -1611,14 +1614,9 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   const int fw = levels_[l].w;  // fine rows are readable from x = -1 to fw
   const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
   const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
-  const auto lanes = [](int count) {
-    return count >= 16  ? __mmask16(0xFFFF)
-           : count <= 0 ? __mmask16(0)
-                        : __mmask16((1u << count) - 1);
-  };
   for (int I = 0; I < C.w; I += 16) {
     const size_t kc = C.at(I, J);
-    const __mmask16 in = lanes(C.w - I);
+    const __mmask16 in = lanes_left(C.w - I);
     const auto load = [&](const Plane& v, size_t k) { return _mm512_maskz_loadu_ps(in, &v[k]); };
     const auto load_at = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
     for (const Plane* q : {&P.x0, &P.x1, &P.y0, &P.y1, &P.c00, &P.c10, &P.c01, &P.c11})
@@ -1634,8 +1632,8 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
     const auto fine = [&](const float* r, int offset, const __m512i& pick) {
       if (odd_at) return load_at(r + (offset == 0 ? I : odd_at + I + (offset - 1) / 2));
       const int o = x + offset - (offset == 1 ? 1 : 0);  // the first of the 32 loaded
-      const __m512 lo = _mm512_maskz_loadu_ps(lanes(fw + 1 - o), r + o);
-      const __m512 hi = _mm512_maskz_loadu_ps(lanes(fw + 1 - o - 16), r + o + 16);
+      const __m512 lo = _mm512_maskz_loadu_ps(lanes_left(fw + 1 - o), r + o);
+      const __m512 hi = _mm512_maskz_loadu_ps(lanes_left(fw + 1 - o - 16), r + o + 16);
       return _mm512_permutex2var_ps(lo, pick, hi);
     };
     for (int c = 0; c < NC; ++c) {
