@@ -40,10 +40,11 @@ TEST_CASE("reached_from_fixed is a flood fill from the fixed and anchored pixels
   // Open-link probabilities around the percolation threshold (0.5) make many components of
   // every shape: runs that overlap several runs above, U shapes that join late.
   // Rows up to 250 pixels, so that runs of more than 64 open links (a step of the vectorised scan
-  // for a run's end) start at every offset.
+  // for a run's end) start at every offset; up to 1100 rows, so that the rows are walked in bands
+  // of 128 or more (up to eight), whose boundaries components cross.
   for (double open : {0.2, 0.45, 0.5, 0.55, 0.8, 0.98, 0.995})
     for (double seeds : {0.0005, 0.01}) {
-      const int W = 1 + int(unit(rng) * 250), H = 1 + int(unit(rng) * 70);
+      const int W = 1 + int(unit(rng) * 250), H = 1 + int(unit(rng) * 1100);
       Problem p = make_open_problem(W, H, 3);
       for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
