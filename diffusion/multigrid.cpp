@@ -366,6 +366,29 @@ constexpr int kChangeReach = 6;
 
 using RowHook = std::function<void(int)>;
 
+// The restriction of a level's rows as they are completed, in any order, by rows in parallel:
+// coarse row J reads fine rows 2J-1 .. 2J+1, and is restricted by the call that completes the
+// last of them.
+class RestrictWhenReady {
+ public:
+  RestrictWhenReady(int fine_h, int coarse_h)
+      : fine_h_(fine_h), coarse_h_(coarse_h), ready_(new std::atomic<int>[size_t(coarse_h)]) {
+    for (int J = 0; J < coarse_h; ++J) ready_[J].store(0, std::memory_order_relaxed);
+  }
+  // Fine row y is final: restrict(J) for each coarse row J that it completes.
+  template <class Restrict>
+  void row_done(int y, const Restrict& restrict) {
+    for (int J = y / 2; J <= std::min(coarse_h_ - 1, (y + 1) / 2); ++J) {
+      const int needed = std::min(fine_h_ - 1, 2 * J + 1) - std::max(0, 2 * J - 1) + 1;
+      if (ready_[J].fetch_add(1, std::memory_order_acq_rel) + 1 == needed) restrict(J);
+    }
+  }
+
+ private:
+  int fine_h_, coarse_h_;
+  std::unique_ptr<std::atomic<int>[]> ready_;
+};
+
 template <int NC>
 class Multigrid {
  public:
@@ -392,6 +415,7 @@ class Multigrid {
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   Plane& previous_;                     // the correction before a cycle (SolverOptions::max_error)
   bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
+  bool rhs_restricted_ = false;         // levels_[1].rhs is the finest one's restricted (run())
   std::vector<double> level_ms_;        // SolveStats::level_ms
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
@@ -431,6 +455,8 @@ class Multigrid {
   // pointing at x = 0 of a row readable from x = -1 to w, zero outside the level).
   void restrict_row(int l, int J, const float* const north[NC], const float* const centre[NC],
                     const float* const south[NC]);
+  // Row J of levels_[l+1].rhs = P^T levels_[l].rhs.
+  void restrict_rhs_row(int l, int J);
   // Row y of levels_[l].e += P levels_[l+1].e (kSet: = P levels_[l+1].e).
   template <bool kSet>
   void prolongate_row(int l, int y);
@@ -444,10 +470,12 @@ class Multigrid {
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
   // `free_zero`: u is 0 on every free pixel (no initial guess).
+  // `row_done`, when given, is called for every row once it is written (rows in parallel).
   template <class T>
   std::array<double, NC> residual_double(const std::vector<T>& u, Plane& r_padded,
                                          std::array<double, NC>* b_norms = nullptr,
-                                         bool free_zero = false) const;
+                                         bool free_zero = false,
+                                         const RowHook* row_done = nullptr) const;
   double solve_correction(double rel, double tolerance, SolveStats& st);
   double change_since(Plane& before) const;
   float change_of_row(int y, Plane& before) const;
@@ -1712,6 +1740,18 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   }
 }
 
+template <int NC>
+void Multigrid<NC>::restrict_rhs_row(int l, int J) {
+  const Level& L = levels_[l];
+  const float *north[NC], *centre[NC], *south[NC];  // ghost rows beyond the level: 0
+  for (int c = 0; c < NC; ++c) {
+    north[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J - 1)];
+    centre[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J)];
+    south[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J + 1)];
+  }
+  restrict_row(l, J, north, centre, south);
+}
+
 // A cell (two fine points) at a time, so that the loops have no branch and vectorise; the sums
 // are the same, term by term, as point by point. With kSet the row's values are replaced by
 // 0 + P e_c, the bits of adding to a row of zeros (0 + -0 is +0), without the zeros' pass.
@@ -1794,8 +1834,7 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
   const int fs = F.stride;
   static std::atomic<std::uint64_t> pre_smoothings{0};
   const std::uint64_t pass = ++pre_smoothings;
-  const std::unique_ptr<std::atomic<int>[]> rows_ready(new std::atomic<int>[size_t(C.h)]);
-  for (int J = 0; J < C.h; ++J) rows_ready[J].store(0, std::memory_order_relaxed);
+  RestrictWhenReady ready(F.h, C.h);
   struct Ring {
     Plane rows;  // 3 slots of NC rows, each laid out as a level's
     std::uint64_t pass[3] = {0, 0, 0};
@@ -1831,16 +1870,13 @@ void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
     };
     const float* unused[NC];
     residual(y, unused);
-    // Coarse row J reads fine rows 2J-1 .. 2J+1.
-    for (int J = y / 2; J <= std::min(C.h - 1, (y + 1) / 2); ++J) {
-      const int needed = std::min(F.h - 1, 2 * J + 1) - std::max(0, 2 * J - 1) + 1;
-      if (rows_ready[J].fetch_add(1, std::memory_order_acq_rel) + 1 != needed) continue;
+    ready.row_done(y, [&](int J) {
       const float *north[NC], *centre[NC], *south[NC];
       residual(2 * J - 1, north);
       residual(2 * J, centre);
       residual(2 * J + 1, south);
       restrict_row(l, J, north, centre, south);
-    }
+    });
   };
   // Levels 2 and coarser are smoothed more (SolverOptions::coarse_smooth): they are cheap.
   const bool coarse = l >= 2;
@@ -2046,11 +2082,13 @@ void Multigrid<NC>::setup() {
 // fixed neighbours' values plus the anchor w_p a_p, and u holds every pixel (fixed ones at their
 // values). r_padded receives r in the levels' float layout. Returns the per-channel norms of r
 // and, in b_norms, those of b. `free_zero`: u is 0 on every free pixel (no initial guess).
+// `row_done(y)` once row y of r_padded is written.
 template <int NC>
 template <class T>
 std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, Plane& r_padded,
                                                       std::array<double, NC>* b_norms,
-                                                      bool free_zero) const {
+                                                      bool free_zero,
+                                                      const RowHook* row_done) const {
   const Problem& p = problem_;
   const Level& F = levels_[0];
   const size_t np = p.pixel_count(), nf = F.padded();
@@ -2167,11 +2205,12 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
           sums[c * 2 + 1] += bs[j];
         }
       }
+      if (row_done) (*row_done)(y);
     }
   });
 #else
   for_rows(p.height, p.width * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < p.width; ++x) {
         const size_t i = p.index(x, y), k = F.vat(x, y);
         if (fixed_[i]) {
@@ -2205,6 +2244,8 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
           rows[(size_t(y) * NC + c) * 2 + 1] += b * b;
         }
       }
+      if (row_done) (*row_done)(y);
+    }
   });
 #endif
   std::array<double, NC> norms{};
@@ -2303,20 +2344,12 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   if (full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
-    for (int l = 0; l + 1 < count; ++l) {
-      const Level& L = levels_[l];
+    // (Level 1's was restricted as the first residual was computed, row by row: run().)
+    for (int l = rhs_restricted_ ? 1 : 0; l + 1 < count; ++l)
       for_rows(levels_[l + 1].h, levels_[l + 1].w * 2, [&](int J0, int J1) {
-        for (int J = J0; J < J1; ++J) {
-          const float *north[NC], *centre[NC], *south[NC];  // ghost rows beyond the level: 0
-          for (int c = 0; c < NC; ++c) {
-            north[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J - 1)];
-            centre[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J)];
-            south[c] = &L.rhs[c * L.padded() + L.vat(0, 2 * J + 1)];
-          }
-          restrict_row(l, J, north, centre, south);
-        }
+        for (int J = J0; J < J1; ++J) restrict_rhs_row(l, J);
       });
-    }
+    rhs_restricted_ = false;
     fill_zero(levels_.back().e);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
@@ -2451,13 +2484,24 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   Plane& r = levels_[0].rhs;
   // The scale of relative residuals is the right-hand side b of the free pixels' system.
   b_norm_.fill(0.0);
+  // Full multigrid starts by restricting r to every level: level 1's rows are restricted as the
+  // residual's rows are written, while they are in cache (a pass over the finest level less).
+  const auto residual = [&](const auto& u, std::array<double, NC>* b_norms, bool free_zero) {
+    rhs_restricted_ = options_.full_multigrid && levels_.size() > 1;
+    if (!rhs_restricted_) return relative(residual_double(u, r, b_norms, free_zero));
+    RestrictWhenReady ready(levels_[0].h, levels_[1].h);
+    const RowHook restrict_rows = [&](int y) {
+      ready.row_done(y, [&](int J) { restrict_rhs_row(0, J); });
+    };
+    return relative(residual_double(u, r, b_norms, free_zero, &restrict_rows));
+  };
   double rel;
   if (refine) {
     initial(u64);
-    rel = relative(residual_double(u64, r, &b_norm_));
+    rel = residual(u64, &b_norm_, false);
   } else {
     initial(u32);
-    rel = relative(residual_double(u32, r, &b_norm_, guess == nullptr));
+    rel = residual(u32, &b_norm_, guess == nullptr);
   }
   st.initial_residual = rel;
   st.setup_ms = ms_since(t_setup);
@@ -2477,7 +2521,7 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
       solve_correction(rel, options_.tolerance, st);
       add_correction(u64);
       const double prev = rel;
-      rel = relative(residual_double(u64, r));
+      rel = residual(u64, nullptr, false);
       if (rel > 0.5 * prev) break;
     }
     u32.assign(u64.begin(), u64.end());
