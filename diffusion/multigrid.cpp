@@ -713,6 +713,69 @@ std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
   return out;
 }
 
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+// The lanes of a block of sixteen that hold points, with `left` points left in the row from the
+// block's first (none when left <= 0).
+inline __mmask16 lanes_left(int left) {
+  return left >= 16 ? __mmask16(0xFFFF) : left <= 0 ? __mmask16(0) : __mmask16((1u << left) - 1);
+}
+
+// build_prolongation's weights from the finest level, sixteen coarse points of a row at a time:
+// the points I .. I+15 of row J flagged in `compute`. The finest level's couplings are 0 or 1
+// and it has no corner couplings, so every product of build_prolongation's formulas is exact
+// (and a corner's term adds +0 to a sum that is not -0): what is left are its differences,
+// comparisons and divisions, made here in its order. The same bits, lane by lane.
+struct FinestPoints {    // sixteen fine points of one parity of x in a row
+  __m512 d, e, w, n, s;  // the diagonal and the couplings, as in stencil_at()
+  __mmask16 alive;
+};
+// The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`.
+inline FinestPoints finest_points(const Level& F, int I0, int parity, int y, __mmask16 in) {
+  const size_t own = F.vat(parity, y) + I0, other = F.vat(1 - parity, y) + I0 + parity - 1;
+  const __m128i here = _mm_maskz_loadu_epi8(in, &F.pcode[own]),
+                west = _mm_maskz_loadu_epi8(in, &F.pcode[other]),
+                north = _mm_maskz_loadu_epi8(in, &F.pcode[own] - F.stride);
+  const __m512 one = _mm512_set1_ps(1.0f);
+  const auto bit = [&](__m128i v, std::uint8_t b) {
+    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
+  };
+  FinestPoints f;
+  f.e = bit(here, kCodeEast);
+  f.w = bit(west, kCodeEast);
+  f.s = bit(here, kCodeSouth);
+  f.n = bit(north, kCodeSouth);
+  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(15));
+  f.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links), _mm512_loadu_ps(kLinksDiag));
+  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
+  f.d = _mm512_mask_loadu_ps(f.d, anchored, &F.pdiag[own]);
+  // The alive flags are in order: bytes x = 2 I0 .. 2 I0 + 31, this parity's every other one.
+  const int left = F.w - 2 * I0;
+  const __mmask32 bytes = left >= 32 ? ~__mmask32(0) : left <= 0 ? 0 : (__mmask32(1) << left) - 1;
+  __m256i pairs = _mm256_maskz_loadu_epi8(bytes, &F.alive[F.at(2 * I0, y)]);
+  if (parity) pairs = _mm256_srli_epi16(pairs, 8);
+  f.alive = __mmask16(in & _mm_test_epi8_mask(_mm256_cvtepi16_epi8(pairs), _mm_set1_epi8(1)));
+  return f;
+}
+// Collapse::weight of build_prolongation for a coupling of 0 or 1 (`direct`): 0 where the
+// coupling is below 1e-3 of the diagonal or the coarse neighbour is not alive, else the coupling
+// (plus the corners' +0).
+inline __m512 collapsed_weight(__m512 direct, __m512 d, __m512 coarse_alive) {
+  const __mmask16 weak =
+      _mm512_cmp_ps_mask(direct, _mm512_mul_ps(_mm512_set1_ps(1e-3f), d), _CMP_LE_OQ);
+  const __mmask16 dead = _mm512_cmp_ps_mask(coarse_alive, _mm512_setzero_ps(), _CMP_EQ_OQ);
+  return _mm512_maskz_mov_ps(__mmask16(~weak & ~dead), direct);
+}
+// ratio() of build_prolongation: num / den where den > 1e-6, else 0.
+inline __m512 ratio16(__m512 num, __m512 den) {
+  const __mmask16 ok = _mm512_cmp_ps_mask(den, _mm512_set1_ps(1e-6f), _CMP_GT_OQ);
+  return _mm512_maskz_div_ps(ok, num, den);
+}
+// The coarse alive flags of points I0 .. I0+15 from `at` (as 0 or 1).
+inline __m512 coarse_alive16(const std::uint8_t* at, __mmask16 in) {
+  return _mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(_mm_maskz_loadu_epi8(in, at)));
+}
+#endif
+
 // Operator-dependent prolongation (Dendy 1982) from level l+1 into level l: each fine point
 // interpolates from the coarse points around it with weights from its own stencil.
 template <int NC>
@@ -770,6 +833,81 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
       }
     });
   };
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+  if (!F.nine_point) {
+    // From the finest level: sixteen coarse points at a time (finest_points()), the same bits.
+    const auto rows = [&](const auto& sixteen) {
+      for_rows(C.h, C.w * 8, [&](int J0, int J1) {
+        const std::uint8_t* todo = plain.todo.data();
+        const int cw = C.w;
+        for (int J = J0; J < J1; ++J)
+          for (int I0 = 0; I0 < cw; I0 += 16) {
+            const size_t kc = C.at(I0, J);
+            const __mmask16 in = lanes_left(cw - I0);
+            const __mmask16 compute = _mm_mask_cmpeq_epi8_mask(
+                in, _mm_maskz_loadu_epi8(in, todo + kc), _mm_set1_epi8(PlainPoints::kCompute));
+            if (compute) sixteen(I0, J, kc, compute);
+          }
+      });
+    };
+    const auto store = [&](Plane& v, size_t kc, __mmask16 m, __m512 x) {
+      _mm512_mask_storeu_ps(&v[kc], m, x);
+    };
+    rows([&](int I0, int J, size_t kc, __mmask16 compute) {
+      const __m512 zero = _mm512_setzero_ps(), alive = coarse_alive16(&C.alive[kc], compute);
+      __m512 x0 = zero, x1 = zero, y0 = zero, y1 = zero;
+      // Fine points (2I+1, 2J), where 2I+1 < F.w.
+      if (const __mmask16 xs = compute & lanes_left(F.odd_count() - I0)) {
+        const FinestPoints f = finest_points(F, I0, 1, 2 * J, xs);
+        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.d, f.n), f.s);
+        const __m512 east = coarse_alive16(&C.alive[kc + 1], compute);
+        x0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.w, f.d, alive), den));
+        x1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.e, f.d, east), den));
+      }
+      // Fine points (2I, 2J+1), where 2J+1 < F.h.
+      if (2 * J + 1 < F.h) {
+        const FinestPoints f = finest_points(F, I0, 0, 2 * J + 1, compute);
+        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.d, f.w), f.e);
+        const __m512 south = coarse_alive16(&C.alive[kc + C.stride], compute);
+        y0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.n, f.d, alive), den));
+        y1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.s, f.d, south), den));
+      }
+      store(P.x0, kc, compute, x0);
+      store(P.x1, kc, compute, x1);
+      store(P.y0, kc, compute, y0);
+      store(P.y1, kc, compute, y1);
+    });
+    copy_plain({&P.x0, &P.x1, &P.y0, &P.y1});
+    rows([&](int I0, int J, size_t kc, __mmask16 compute) {
+      const __m512 zero = _mm512_setzero_ps();
+      __m512 c00 = zero, c10 = zero, c01 = zero, c11 = zero;
+      // Fine points (2I+1, 2J+1), where 2I+1 < F.w and 2J+1 < F.h.
+      const __mmask16 cs = compute & lanes_left(F.odd_count() - I0);
+      if (cs && 2 * J + 1 < F.h) {
+        const FinestPoints f = finest_points(F, I0, 1, 2 * J + 1, cs);
+        const __m512 inv = ratio16(_mm512_set1_ps(1.0f), f.d);
+        const auto load = [&](const Plane& v, size_t k) {
+          return _mm512_maskz_loadu_ps(cs, &v[k]);
+        };
+        const size_t below = kc + C.stride;
+        const auto weight = [&](__m512 a, __m512 pa, __m512 b, __m512 pb) {
+          return _mm512_maskz_mov_ps(
+              f.alive, _mm512_mul_ps(_mm512_fmadd_ps(b, pb, _mm512_mul_ps(a, pa)), inv));
+        };
+        c00 = weight(f.w, load(P.y0, kc), f.n, load(P.x0, kc));
+        c10 = weight(f.e, load(P.y0, kc + 1), f.n, load(P.x1, kc));
+        c01 = weight(f.w, load(P.y1, kc), f.s, load(P.x0, below));
+        c11 = weight(f.e, load(P.y1, kc + 1), f.s, load(P.x1, below));
+      }
+      store(P.c00, kc, compute, c00);
+      store(P.c10, kc, compute, c10);
+      store(P.c01, kc, compute, c01);
+      store(P.c11, kc, compute, c11);
+    });
+    copy_plain({&P.c00, &P.c10, &P.c01, &P.c11});
+    return;
+  }
+#endif
   cells([&](int I, int J, size_t kc) {
     float x0 = 0, x1 = 0, y0 = 0, y1 = 0;
     if (2 * I + 1 < F.w) {
@@ -1229,12 +1367,6 @@ HalfRow half_row(const Level& F, int y, int half) {
 }
 
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
-// The lanes of a block of sixteen that hold points, with `left` points left in the row from the
-// block's first (none when left <= 0).
-inline __mmask16 lanes_left(int left) {
-  return left >= 16 ? __mmask16(0xFFFF) : left <= 0 ? __mmask16(0) : __mmask16((1u << left) - 1);
-}
-
 // The finest level's operator at points i .. i+15 of a half row (0 in the lanes outside `in`):
 // the couplings to the four neighbours, and the diagonal or its inverse.
 struct Coefficients16 {
