@@ -834,7 +834,9 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
     });
   };
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
-  if (!F.nine_point) {
+  // (SolverOptions::copy_plain_stencils off: the one-point path, the reference that tests
+  // compare this one with.)
+  if (!F.nine_point && options_.copy_plain_stencils) {
     // From the finest level: sixteen coarse points at a time (finest_points()), the same bits.
     const auto rows = [&](const auto& sixteen) {
       for_rows(C.h, C.w * 8, [&](int J0, int J1) {

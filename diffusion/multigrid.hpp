@@ -67,8 +67,9 @@ struct SolverOptions {
   bool krylov = true;
   int max_levels = 0;  // 0: coarsen down to <= 64 points; otherwise at most this many levels
   // Away from curves every coarse point has the same prolongation weights and Galerkin stencil, to
-  // the last bit: one is computed and copied to the others. Off: each is computed on its own (the
-  // same bits, slower; for tests).
+  // the last bit: one is computed and copied to the others. Off: each is computed on its own, and
+  // the prolongation from the finest level a point at a time rather than sixteen (the same bits,
+  // slower; the reference for tests).
   bool copy_plain_stencils = true;
   // Called after the FMG start and after every cycle with the entry of residual_history it
   // matches and the residual b - A u at every pixel (channel planes of W*H; 0 on fixed pixels).
