@@ -713,6 +713,19 @@ std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
   return out;
 }
 
+// A half row of the finest level (Level::odd): `count` points from `own`, point i at x = 2 i + half
+// of row y; the other half's point i is at `other`, and point i's east and west neighbours are the
+// other half's points i + half and i + half - 1, its north and south ones the same half's points
+// i of the rows around (+- Level::stride).
+struct HalfRow {
+  size_t own, other;
+  int count, half;
+};
+HalfRow half_row(const Level& F, int y, int half) {
+  const size_t even = F.vat(0, y), odd = F.vat(1, y);
+  return half ? HalfRow{odd, even, F.odd_count(), 1} : HalfRow{even, odd, F.even_count(), 0};
+}
+
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
 // The lanes of a block of sixteen that hold points, with `left` points left in the row from the
 // block's first (none when left <= 0).
@@ -720,34 +733,50 @@ inline __mmask16 lanes_left(int left) {
   return left >= 16 ? __mmask16(0xFFFF) : left <= 0 ? __mmask16(0) : __mmask16((1u << left) - 1);
 }
 
+// The finest level's operator at points i .. i+15 of a half row (0 in the lanes outside `in`):
+// the couplings to the four neighbours, and the diagonal or its inverse.
+struct Coefficients16 {
+  __m512 e, w, s, n, d;
+};
+inline Coefficients16 finest_coefficients(const Level& F, const HalfRow& r, int i, __mmask16 in,
+                                          bool inverse) {
+  const std::uint8_t* code = &F.pcode[r.own + i];
+  const __m128i here = _mm_maskz_loadu_epi8(in, code),
+                west = _mm_maskz_loadu_epi8(in, &F.pcode[r.other + i + r.half - 1]),
+                north = _mm_maskz_loadu_epi8(in, code - F.stride);
+  const __m512 one = _mm512_set1_ps(1.0f);
+  const auto bit = [&](__m128i v, std::uint8_t b) {
+    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
+  };
+  Coefficients16 k;
+  k.e = bit(here, kCodeEast);
+  k.w = bit(west, kCodeEast);
+  k.s = bit(here, kCodeSouth);
+  k.n = bit(north, kCodeSouth);
+  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(7));
+  k.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links),
+                              _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
+  // Anchored points are along the curves: most groups of sixteen have none.
+  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
+  const float* stored = (inverse ? F.pinv_diag : F.pdiag).data() + r.own + i;
+  prefetch(stored, 64);  // four groups ahead
+  if (anchored) k.d = _mm512_mask_loadu_ps(k.d, anchored, stored);
+  return k;
+}
+
 // build_prolongation's weights from the finest level, sixteen coarse points of a row at a time:
 // the points I .. I+15 of row J flagged in `compute`. The finest level's couplings are 0 or 1
 // and it has no corner couplings, so every product of build_prolongation's formulas is exact
 // (and a corner's term adds +0 to a sum that is not -0): what is left are its differences,
 // comparisons and divisions, made here in its order. The same bits, lane by lane.
-struct FinestPoints {    // sixteen fine points of one parity of x in a row
-  __m512 d, e, w, n, s;  // the diagonal and the couplings, as in stencil_at()
+struct FinestPoints {  // sixteen fine points of one parity of x in a row
+  Coefficients16 k;    // the diagonal and the couplings, as in stencil_at()
   __mmask16 alive;
 };
 // The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`.
 inline FinestPoints finest_points(const Level& F, int I0, int parity, int y, __mmask16 in) {
-  const size_t own = F.vat(parity, y) + I0, other = F.vat(1 - parity, y) + I0 + parity - 1;
-  const __m128i here = _mm_maskz_loadu_epi8(in, &F.pcode[own]),
-                west = _mm_maskz_loadu_epi8(in, &F.pcode[other]),
-                north = _mm_maskz_loadu_epi8(in, &F.pcode[own] - F.stride);
-  const __m512 one = _mm512_set1_ps(1.0f);
-  const auto bit = [&](__m128i v, std::uint8_t b) {
-    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
-  };
   FinestPoints f;
-  f.e = bit(here, kCodeEast);
-  f.w = bit(west, kCodeEast);
-  f.s = bit(here, kCodeSouth);
-  f.n = bit(north, kCodeSouth);
-  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(15));
-  f.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links), _mm512_loadu_ps(kLinksDiag));
-  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
-  f.d = _mm512_mask_loadu_ps(f.d, anchored, &F.pdiag[own]);
+  f.k = finest_coefficients(F, half_row(F, y, parity), I0, in, false);
   // The alive flags are in order: bytes x = 2 I0 .. 2 I0 + 31, this parity's every other one.
   const int left = F.w - 2 * I0;
   const __mmask32 bytes = left >= 32 ? ~__mmask32(0) : left <= 0 ? 0 : (__mmask32(1) << left) - 1;
@@ -861,18 +890,18 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
       // Fine points (2I+1, 2J), where 2I+1 < F.w.
       if (const __mmask16 xs = compute & lanes_left(F.odd_count() - I0)) {
         const FinestPoints f = finest_points(F, I0, 1, 2 * J, xs);
-        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.d, f.n), f.s);
+        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.k.d, f.k.n), f.k.s);
         const __m512 east = coarse_alive16(&C.alive[kc + 1], compute);
-        x0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.w, f.d, alive), den));
-        x1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.e, f.d, east), den));
+        x0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.w, f.k.d, alive), den));
+        x1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.e, f.k.d, east), den));
       }
       // Fine points (2I, 2J+1), where 2J+1 < F.h.
       if (2 * J + 1 < F.h) {
         const FinestPoints f = finest_points(F, I0, 0, 2 * J + 1, compute);
-        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.d, f.w), f.e);
+        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.k.d, f.k.w), f.k.e);
         const __m512 south = coarse_alive16(&C.alive[kc + C.stride], compute);
-        y0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.n, f.d, alive), den));
-        y1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.s, f.d, south), den));
+        y0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.n, f.k.d, alive), den));
+        y1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.s, f.k.d, south), den));
       }
       store(P.x0, kc, compute, x0);
       store(P.x1, kc, compute, x1);
@@ -887,7 +916,7 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
       const __mmask16 cs = compute & lanes_left(F.odd_count() - I0);
       if (cs && 2 * J + 1 < F.h) {
         const FinestPoints f = finest_points(F, I0, 1, 2 * J + 1, cs);
-        const __m512 inv = ratio16(_mm512_set1_ps(1.0f), f.d);
+        const __m512 inv = ratio16(_mm512_set1_ps(1.0f), f.k.d);
         const auto load = [&](const Plane& v, size_t k) {
           return _mm512_maskz_loadu_ps(cs, &v[k]);
         };
@@ -896,10 +925,10 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
           return _mm512_maskz_mov_ps(
               f.alive, _mm512_mul_ps(_mm512_fmadd_ps(b, pb, _mm512_mul_ps(a, pa)), inv));
         };
-        c00 = weight(f.w, load(P.y0, kc), f.n, load(P.x0, kc));
-        c10 = weight(f.e, load(P.y0, kc + 1), f.n, load(P.x1, kc));
-        c01 = weight(f.w, load(P.y1, kc), f.s, load(P.x0, below));
-        c11 = weight(f.e, load(P.y1, kc + 1), f.s, load(P.x1, below));
+        c00 = weight(f.k.w, load(P.y0, kc), f.k.n, load(P.x0, kc));
+        c10 = weight(f.k.e, load(P.y0, kc + 1), f.k.n, load(P.x1, kc));
+        c01 = weight(f.k.w, load(P.y1, kc), f.k.s, load(P.x0, below));
+        c11 = weight(f.k.e, load(P.y1, kc + 1), f.k.s, load(P.x1, below));
       }
       store(P.c00, kc, compute, c00);
       store(P.c10, kc, compute, c10);
@@ -1354,52 +1383,6 @@ struct RowCouplings {
                 pne[x] * e[x - s + 1];
   }
 };
-
-// A half row of the finest level (Level::odd): `count` points from `own`, point i at x = 2 i + half
-// of row y; the other half's point i is at `other`, and point i's east and west neighbours are the
-// other half's points i + half and i + half - 1, its north and south ones the same half's points
-// i of the rows around (+- Level::stride).
-struct HalfRow {
-  size_t own, other;
-  int count, half;
-};
-HalfRow half_row(const Level& F, int y, int half) {
-  const size_t even = F.vat(0, y), odd = F.vat(1, y);
-  return half ? HalfRow{odd, even, F.odd_count(), 1} : HalfRow{even, odd, F.even_count(), 0};
-}
-
-#if defined(__AVX512BW__) && defined(__AVX512VL__)
-// The finest level's operator at points i .. i+15 of a half row (0 in the lanes outside `in`):
-// the couplings to the four neighbours, and the diagonal or its inverse.
-struct Coefficients16 {
-  __m512 e, w, s, n, d;
-};
-inline Coefficients16 finest_coefficients(const Level& F, const HalfRow& r, int i, __mmask16 in,
-                                          bool inverse) {
-  const std::uint8_t* code = &F.pcode[r.own + i];
-  const __m128i here = _mm_maskz_loadu_epi8(in, code),
-                west = _mm_maskz_loadu_epi8(in, &F.pcode[r.other + i + r.half - 1]),
-                north = _mm_maskz_loadu_epi8(in, code - F.stride);
-  const __m512 one = _mm512_set1_ps(1.0f);
-  const auto bit = [&](__m128i v, std::uint8_t b) {
-    return _mm512_maskz_mov_ps(_mm_test_epi8_mask(v, _mm_set1_epi8(char(b))), one);
-  };
-  Coefficients16 k;
-  k.e = bit(here, kCodeEast);
-  k.w = bit(west, kCodeEast);
-  k.s = bit(here, kCodeSouth);
-  k.n = bit(north, kCodeSouth);
-  const __m128i links = _mm_and_si128(_mm_srli_epi16(here, kCodeLinksShift), _mm_set1_epi8(7));
-  k.d = _mm512_permutexvar_ps(_mm512_cvtepu8_epi32(links),
-                              _mm512_loadu_ps(inverse ? kLinksInverse : kLinksDiag));
-  // Anchored points are along the curves: most groups of sixteen have none.
-  const __mmask16 anchored = _mm_test_epi8_mask(here, _mm_set1_epi8(char(kCodeAnchored)));
-  const float* stored = (inverse ? F.pinv_diag : F.pdiag).data() + r.own + i;
-  prefetch(stored, 64);  // four groups ahead
-  if (anchored) k.d = _mm512_mask_loadu_ps(k.d, anchored, stored);
-  return k;
-}
-#endif
 
 // The same, one point at a time (builds without AVX-512).
 struct Coefficients1 {
