@@ -199,40 +199,53 @@ bool update(float& stored, float value) {
   return before != after;
 }
 
+// Per coarse column I of a fine row: whether any of the row's flags at fine x = 2I - r .. 2I + r
+// is set, the places beyond the row counting as `outside`. The flags are written at row(); any()
+// ORs the row, padded, over windows that double in width up to 2r + 1 (byte loops that
+// vectorise: a prefix count of the row was a chain of dependent additions). One a task: it holds
+// the row; sizes are its own members, not a level's, which the byte stores could alias.
+class FlagWindows {
+ public:
+  FlagWindows(int fine_w, int radius)
+      : fw_(fine_w), r_(radius), a_(size_t(fine_w + 4 * radius + 1), 0), b_(a_.size(), 0) {}
+  std::uint8_t* row() { return a_.data() + r_; }  // fine x = 0 .. fine_w - 1
+  void any(std::uint8_t outside, std::uint8_t* out, int cw) {
+    const int span = 2 * r_ + 1, places = fw_ + 2 * r_;
+    // (The padding again: the last row's windows may have written there.)
+    std::fill_n(a_.data(), r_, outside);
+    std::fill_n(a_.data() + r_ + fw_, r_, outside);
+    // w[x]: any flag at padded places x .. x + width - 1, for the places that column windows
+    // read (those past `places` only feed windows that none reads).
+    std::uint8_t *w = a_.data(), *o = b_.data();
+    for (int width = 1; width < span;) {
+      const int step = std::min(width, span - width);  // width + step <= span
+      for (int x = 0; x < places; ++x) o[x] = w[x] | w[x + step];
+      std::swap(w, o);
+      width += step;
+    }
+    for (int I = 0; I < cw; ++I) out[I] = w[2 * I];  // fine 2I - r .. 2I + r
+  }
+
+ private:
+  int fw_, r_;
+  std::vector<std::uint8_t> a_, b_;
+};
+
 // The coarse points of C (padded flags) within `radius` fine points, in both directions, of a
 // fine point of F flagged in `changed` (padded flags on F).
 std::vector<std::uint8_t> near_changed(const Level& F, const Level& C,
                                        const std::vector<std::uint8_t>& changed, int radius) {
-  // Per fine row: which coarse columns have a flag within the radius: the row, with `radius`
-  // zeros on either side, ORed over windows of 1, 2, 4, 8 ... points up to 2 radius + 1 (byte
-  // loops that vectorise; a prefix count of the row was a chain of dependent additions).
-  // Rows are independent in both passes: they run in parallel. Each pass copies the sizes into
-  // locals of its own: a byte store may alias any int reached through a pointer (a level's, or
-  // a lambda's capture), and the OR of rows below then reloaded its bound at every byte instead
-  // of running 64 bytes at a time.
+  // Per fine row: which coarse columns have a flag within the radius (FlagWindows). Rows are
+  // independent in both passes: they run in parallel. The second pass copies the sizes into
+  // locals: a byte store may alias any int reached through a pointer (a level's, or a lambda's
+  // capture), and the OR of rows below then reloaded its bound at every byte instead of running
+  // 64 bytes at a time.
   std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
   for_rows(F.h, F.w, [&](int y0, int y1) {
-    const int fw = F.w, cw = C.w, r = radius, span = 2 * radius + 1;
-    // window[x]: any flag at padded places x .. x + width - 1 (fine x - r .. x - r + width - 1);
-    // the places past the padded row stay 0.
-    std::vector<std::uint8_t> window(size_t(fw + 2 * r + span), 0), wider(window.size(), 0);
+    FlagWindows windows(F.w, radius);
     for (int y = y0; y < y1; ++y) {
-      // (The places before and after the row, written by the last row's windows, are 0 again.)
-      std::fill_n(window.begin(), r, std::uint8_t(0));
-      std::copy_n(&changed[F.at(0, y)], fw, window.begin() + r);
-      std::fill_n(window.begin() + r + fw, r, std::uint8_t(0));
-      std::uint8_t *w = window.data(), *o = wider.data();
-      int width = 1;
-      while (width < span) {
-        const int step = std::min(width, span - width);  // width + step <= span
-        const int places = fw + 2 * r;
-        for (int x = 0; x < places; ++x) o[x] = w[x] | w[x + step];
-        std::swap(w, o);
-        width += step;
-      }
-      // Coarse column I: fine 2I - r .. 2I + r, padded places 2I .. 2I + span - 1.
-      std::uint8_t* out = &columns[size_t(y) * cw];
-      for (int I = 0; I < cw; ++I) out[I] = w[2 * I];
+      std::copy_n(&changed[F.at(0, y)], F.w, windows.row());
+      windows.any(0, &columns[size_t(y) * C.w], C.w);
     }
   });
   std::vector<std::uint8_t> out(C.padded(), 0);
@@ -320,22 +333,17 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
     }
   };
   // Per fine row, per coarse column I: whether fine points 2I-3 .. 2I+3 of the row are all plain
-  // (the row's flags ORed over windows of 2, 4 and 7); then per coarse point, whether rows
-  // 2J-3 .. 2J+3 all say so.
+  // (none is flagged not plain, nor beyond the row: FlagWindows); then per coarse point, whether
+  // rows 2J-3 .. 2J+3 all say so.
   std::vector<std::uint8_t> columns(size_t(F.h) * C.w);
   for_rows(F.h, F.w, [&](int y0, int y1) {
-    const int fw = F.w, cw = C.w;
-    // Spare entries past the row, 0 (the windows' flags that reach past it are not read).
-    std::vector<std::uint8_t> bad(size_t(F.w) + 8, 0), two(bad.size(), 0), four(bad.size(), 0);
+    FlagWindows windows(F.w, 3);
+    const int cw = C.w;
     for (int y = y0; y < y1; ++y) {
-      not_plain(y, bad.data());
-      for (int x = 0; x < fw; ++x) two[x] = bad[x] | bad[x + 1];
-      for (int x = 0; x < fw; ++x) four[x] = two[x] | two[x + 2];
+      not_plain(y, windows.row());
       std::uint8_t* row = &columns[size_t(y) * cw];
-      for (int I = 0; I < cw; ++I) {
-        const int x0 = 2 * I - 3, x1 = 2 * I + 4;  // the window x0 .. x1 - 1
-        row[I] = x0 >= 0 && x1 <= fw && !(four[x0] | four[x0 + 3]);
-      }
+      windows.any(1, row, cw);
+      for (int I = 0; I < cw; ++I) row[I] ^= 1;
     }
   });
   for_rows(C.h, C.w * 7, [&](int J0, int J1) {
@@ -419,7 +427,6 @@ class Multigrid {
   std::vector<std::uint8_t>& fixed_;    // the problem's fixed pixels plus the unreachable ones
   Plane& previous_;                     // the correction before a cycle (SolverOptions::max_error)
   bool previous_zero_ = false;          // previous_ stands for zeros (its contents are not read)
-  bool rhs_restricted_ = false;         // levels_[1].rhs is the finest one's restricted (run())
   std::vector<double> level_ms_;        // SolveStats::level_ms
   // Exact solver of the coarsest level.
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
@@ -2425,7 +2432,8 @@ float Multigrid<NC>::change_of_row(int y, Plane& before) const {
 // Solves A e = r0 (float32) into levels_[0].e: FMG, then CG-accelerated or plain V-cycles until
 // the stopping rule holds (the residual relative to b_norm_ below `tolerance`, or with
 // SolverOptions::max_error the estimated error below it) or float32 precision is exhausted.
-// `rel` is the relative residual of r0 (the finest right-hand side).
+// `rel` is the relative residual of r0 (the finest right-hand side). With full multigrid,
+// levels_[1].rhs already holds r0 restricted (run() restricts it as it computes r0).
 template <int NC>
 double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats& st) {
   const int count = int(levels_.size());
@@ -2465,12 +2473,11 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   if (full_multigrid) {
     // FMG: restrict r0 to every level, solve the coarsest exactly, then interpolate each
     // level's answer as the next finer one's start and run one V-cycle there.
-    // (Level 1's was restricted as the first residual was computed, row by row: run().)
-    for (int l = rhs_restricted_ ? 1 : 0; l + 1 < count; ++l)
+    // (Level 1's was restricted by run() as it computed r0, row by row.)
+    for (int l = 1; l + 1 < count; ++l)
       for_rows(levels_[l + 1].h, levels_[l + 1].w * 2, [&](int J0, int J1) {
         for (int J = J0; J < J1; ++J) restrict_rhs_row(l, J);
       });
-    rhs_restricted_ = false;
     fill_zero(levels_.back().e);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
@@ -2607,9 +2614,10 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   b_norm_.fill(0.0);
   // Full multigrid starts by restricting r to every level: level 1's rows are restricted as the
   // residual's rows are written, while they are in cache (a pass over the finest level less).
+  // (solve_correction's full multigrid counts on it.)
   const auto residual = [&](const auto& u, std::array<double, NC>* b_norms, bool free_zero) {
-    rhs_restricted_ = options_.full_multigrid && levels_.size() > 1;
-    if (!rhs_restricted_) return relative(residual_double(u, r, b_norms, free_zero));
+    if (!options_.full_multigrid || levels_.size() == 1)
+      return relative(residual_double(u, r, b_norms, free_zero));
     RestrictWhenReady ready(levels_[0].h, levels_[1].h);
     const RowHook restrict_rows = [&](int y) {
       ready.row_done(y, [&](int J) { restrict_rhs_row(0, J); });
