@@ -2789,4 +2789,9 @@ Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
   return solve_with(problem, options, &initial_guess, &initial_guess);
 }
 
+Solution solve_multigrid_into(const Problem& problem, const SolverOptions& options,
+                              std::vector<float>&& storage) {
+  return solve_with(problem, options, nullptr, &storage);
+}
+
 }  // namespace wisp::diffusion

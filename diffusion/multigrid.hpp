@@ -120,6 +120,13 @@ Solution solve_multigrid(const Problem& problem, const SolverOptions& options = 
 Solution solve_multigrid(const Problem& problem, const SolverOptions& options,
                          std::vector<float>&& initial_guess);
 
+// A solve from nothing (no initial guess), its answer written into `storage`, whose values and
+// size do not matter: a caller that solves drawing after drawing hands back its last answer's
+// planes, so that the answer is not new memory to fault in (12.6 MB at 1024², three channels,
+// which the allocator returns to the system as soon as it is freed).
+Solution solve_multigrid_into(const Problem& problem, const SolverOptions& options,
+                              std::vector<float>&& storage);
+
 // Frees the workspaces that solves keep between calls (about 84 MB at 1024², three channels):
 // the next solve builds a new one. For the end of a batch, e.g. before `wisp render`'s previews.
 void release_solver_workspaces();

@@ -438,6 +438,14 @@ TEST_CASE("a warm start from the answer needs no cycle, from a nearby guess fewe
   CHECK(in_place.planes == near.planes);
   CHECK(in_place.planes.data() == buffer);
   CHECK(in_place.stats.cycles == near.stats.cycles);
+  // A solve from nothing into storage handed over (a previous answer's planes, whose values must
+  // not be taken for a guess): the cold solve's bits, in that storage.
+  std::vector<float> storage = near.planes;
+  const float* kept = storage.data();
+  const Solution into = solve_multigrid_into(p, opt, std::move(storage));
+  CHECK(into.planes == cold.planes);
+  CHECK(into.planes.data() == kept);
+  CHECK(into.stats.cycles == cold.stats.cycles);
 }
 
 TEST_CASE("a region sealed by insulating curves has no colour and is reported", "[multigrid]") {
