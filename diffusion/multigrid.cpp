@@ -480,12 +480,11 @@ class Multigrid {
   double relative(const std::array<double, NC>& norms) const;
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
-  // `free_zero`: u is 0 on every free pixel (no initial guess).
+  // `u` null: no initial guess (see residual_double).
   // `row_done`, when given, is called for every row once it is written (rows in parallel).
   template <class T>
-  std::array<double, NC> residual_double(const std::vector<T>& u, Plane& r_padded,
+  std::array<double, NC> residual_double(const T* u, Plane& r_padded,
                                          std::array<double, NC>* b_norms = nullptr,
-                                         bool free_zero = false,
                                          const RowHook* row_done = nullptr) const;
   double solve_correction(double rel, double tolerance, SolveStats& st);
   double change_since(Plane& before) const;
@@ -780,8 +779,11 @@ struct FinestPoints {  // sixteen fine points of one parity of x in a row
   Coefficients16 k;    // the diagonal and the couplings, as in stencil_at()
   __mmask16 alive;
 };
-// The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`.
-inline FinestPoints finest_points(const Level& F, int I0, int parity, int y, __mmask16 in) {
+// The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`. Always inlined:
+// its registers are its caller's (and out of line, GCC 12 takes the intrinsics' undefined
+// operands for uninitialised values).
+[[gnu::always_inline]] inline FinestPoints finest_points(const Level& F, int I0, int parity, int y,
+                                                         __mmask16 in) {
   FinestPoints f;
   f.k = finest_coefficients(F, half_row(F, y, parity), I0, in, false);
   // The alive flags are in order: bytes x = 2 I0 .. 2 I0 + 31, this parity's every other one.
@@ -2209,13 +2211,13 @@ void Multigrid<NC>::setup() {
 // r = b - A u on the free pixels of the finest level, in double precision, where b = -g plus the
 // fixed neighbours' values plus the anchor w_p a_p, and u holds every pixel (fixed ones at their
 // values). r_padded receives r in the levels' float layout. Returns the per-channel norms of r
-// and, in b_norms, those of b. `free_zero`: u is 0 on every free pixel (no initial guess).
+// and, in b_norms, those of b. `u` null: no initial guess, u is the given values on fixed pixels
+// and 0 on free ones, read from the problem (the answer is then written once, at the end).
 // `row_done(y)` once row y of r_padded is written.
 template <int NC>
 template <class T>
-std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, Plane& r_padded,
+std::array<double, NC> Multigrid<NC>::residual_double(const T* u, Plane& r_padded,
                                                       std::array<double, NC>* b_norms,
-                                                      bool free_zero,
                                                       const RowHook* row_done) const {
   const Problem& p = problem_;
   const Level& F = levels_[0];
@@ -2246,7 +2248,7 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
   const int W = p.width;
   // Plain pointers: the intrinsics' stores may alias anything, and with the vectors' own
   // pointers read through references GCC loaded them again after every store.
-  const T* const u0 = u.data();
+  const T* const u0 = u;
   const float *const value = p.value.data(), *const rhs = p.rhs.empty() ? nullptr : p.rhs.data();
   const float* const anchor = p.anchor_weight.data();
   const std::uint8_t *const fixed = fixed_.data(), *const links = p.links.data();
@@ -2288,22 +2290,27 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
           // Most blocks, with no initial guess: no anchor, and every open link to a free pixel,
           // where u is 0. Then A u is 0 (+0, as the loop below computes it) and r = b, with no
           // value of u read.
-          const bool plain = free_zero && !anchored && !group(to_fixed64);
+          const bool plain = !u0 && !anchored && !group(to_fixed64);
           // (Unrolled, so that the sums r2 and b2 stay in registers.)
 #pragma GCC unroll 4
           for (int c = 0; c < NC; ++c) {
             __m512d b = _mm512_setzero_pd(), au = _mm512_setzero_pd();
             if (rhs) b = _mm512_xor_pd(widen(&rhs[c * np + i], free), _mm512_set1_pd(-0.0));
             if (!plain) {
-              const T* uc = &u0[c * np + i];
-              prefetch(uc, 2 * W), prefetch(value, c * np + i + W);  // rows read next
-              const __m512d ui = load(uc, free);
+              // Without a guess u is +0 on free pixels and the value on fixed ones (a free
+              // pixel's open links reach no unreachable one: it would be unreachable too).
+              const T* uc = u0 ? &u0[c * np + i] : nullptr;
+              const float* vc = &value[c * np + i];
+              if (uc) prefetch(uc, 2 * W);
+              prefetch(vc, W);  // rows read next
+              const __m512d ui = uc ? load(uc, free) : _mm512_setzero_pd();
               if (anchored) {
                 au = _mm512_mask3_fmadd_pd(ui, w, au, anchored);
-                b = _mm512_mask3_fmadd_pd(w, widen(&value[c * np + i], anchored), b, anchored);
+                b = _mm512_mask3_fmadd_pd(w, widen(vc, anchored), b, anchored);
               }
               for (int q = 0; q < 4; ++q) {  // (no branch on open[q]: with no lane, no change)
-                const __m512d un = load(uc + nb[q], open[q]);
+                const __m512d un = uc ? load(uc + nb[q], open[q])
+                                      : widen(vc + nb[q], __mmask8(open[q] & fixed_nb[q]));
                 au = _mm512_mask_add_pd(au, open[q], au, ui);
                 b = _mm512_mask_add_pd(b, __mmask8(open[q] & fixed_nb[q]), b, un);
                 au = _mm512_mask_sub_pd(au, __mmask8(open[q] & ~fixed_nb[q]), au, un);
@@ -2351,20 +2358,23 @@ std::array<double, NC> Multigrid<NC>::residual_double(const std::vector<T>& u, P
         const size_t nb[4] = {i + 1, i - 1, i + p.width, i - p.width};
         const double w = p.anchor_weight[i];
         for (int c = 0; c < NC; ++c) {
-          const T* uc = &u[c * np];
+          // Without a guess: the given value on a fixed pixel, 0 on a free one.
+          const auto uc = [&, o = c * np](size_t j) {
+            return u ? double(u[o + j]) : p.fixed[j] ? double(p.value[o + j]) : 0.0;
+          };
           double b = p.rhs.empty() ? 0.0 : -double(p.rhs[c * np + i]);
           double au = 0;
           if (w > 0) {
-            au += w * uc[i];
+            au += w * uc(i);
             b += w * p.value[c * np + i];
           }
           for (int q = 0; q < 4; ++q)
             if (open[q]) {
-              au += uc[i];
+              au += uc(i);
               if (fixed_[nb[q]])
-                b += uc[nb[q]];
+                b += uc(nb[q]);
               else
-                au -= uc[nb[q]];
+                au -= uc(nb[q]);
             }
           const double r = b - au;
           r_padded[c * nf + k] = float(r);
@@ -2580,17 +2590,35 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   };
   // u += the correction solved on the finest level, whose rows hold their even points, then
   // their odd ones (Level::odd): each pair of pixels takes one of each, so that the loop
-  // vectorises (a loop per run, with its stride a variable, did not).
-  const auto add_correction = [&](auto& u) {
+  // vectorises (a loop per run, with its stride a variable, did not). `unwritten`: a solve
+  // without a guess, whose u is written here for the first time, as initial() would have
+  // written it plus the correction (one pass over the answer rather than two).
+  const auto add_correction = [&](auto& u, bool unwritten) {
+    if (unwritten) {
+      reserve_touched(u, np * NC);
+      u.resize(np * NC);
+    }
     const Level& F = levels_[0];
     const size_t nf = F.padded();
     const int pairs = F.odd_count();
     for_rows(p.height, p.width * NC, [&](int y0, int y1) {
       for (int c = 0; c < NC; ++c)
         for (int y = y0; y < y1; ++y) {
-          auto* __restrict to = &u[c * np + p.index(0, y)];
+          const size_t at = c * np + p.index(0, y);
+          auto* __restrict to = &u[at];
           const float* __restrict even = &F.e[c * nf + F.vat(0, y)];
           const float* __restrict odd = &F.e[c * nf + F.vat(1, y)];
+          if (unwritten) {
+            const std::uint8_t* __restrict given = &p.fixed[p.index(0, y)];
+            const float* __restrict value = &p.value[at];
+            for (int i = 0; i < pairs; ++i) {
+              const float v0 = value[2 * i], v1 = value[2 * i + 1];
+              to[2 * i] = (given[2 * i] ? v0 : 0.0f) + even[i];
+              to[2 * i + 1] = (given[2 * i + 1] ? v1 : 0.0f) + odd[i];
+            }
+            if (F.w & 1) to[F.w - 1] = (given[F.w - 1] ? value[F.w - 1] : 0.0f) + even[pairs];
+            continue;
+          }
           for (int i = 0; i < pairs; ++i) {
             to[2 * i] += even[i];
             to[2 * i + 1] += odd[i];
@@ -2615,22 +2643,26 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
   // Full multigrid starts by restricting r to every level: level 1's rows are restricted as the
   // residual's rows are written, while they are in cache (a pass over the finest level less).
   // (solve_correction's full multigrid counts on it.)
-  const auto residual = [&](const auto& u, std::array<double, NC>* b_norms, bool free_zero) {
+  const auto residual = [&](const auto* u, std::array<double, NC>* b_norms) {
     if (!options_.full_multigrid || levels_.size() == 1)
-      return relative(residual_double(u, r, b_norms, free_zero));
+      return relative(residual_double(u, r, b_norms));
     RestrictWhenReady ready(levels_[0].h, levels_[1].h);
     const RowHook restrict_rows = [&](int y) {
       ready.row_done(y, [&](int J) { restrict_rhs_row(0, J); });
     };
-    return relative(residual_double(u, r, b_norms, free_zero, &restrict_rows));
+    return relative(residual_double(u, r, b_norms, &restrict_rows));
   };
+  // Without a guess (and in float32), u is written with the correction, once (add_correction).
+  const bool cold = !refine && !guess;
   double rel;
   if (refine) {
     initial(u64);
-    rel = residual(u64, &b_norm_, false);
+    rel = residual(u64.data(), &b_norm_);
+  } else if (cold) {
+    rel = residual(static_cast<const float*>(nullptr), &b_norm_);
   } else {
     initial(u32);
-    rel = residual(u32, &b_norm_, guess == nullptr);
+    rel = residual(u32.data(), &b_norm_);
   }
   st.initial_residual = rel;
   st.setup_ms = ms_since(t_setup);
@@ -2640,7 +2672,9 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
     st.converged = rel == 0;
     if (by_error ? rel > 0 : rel > options_.tolerance) {
       rel = solve_correction(rel, options_.tolerance, st);
-      add_correction(u32);
+      add_correction(u32, cold);
+    } else if (cold) {
+      initial(u32);
     }
   } else {
     // Mixed precision: the float32 solve reaches a relative residual of about 1e-6. For a
@@ -2648,9 +2682,9 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
     // (iterative refinement); each round gains about five digits.
     for (int round = 0; round < 3 && rel > options_.tolerance; ++round) {
       solve_correction(rel, options_.tolerance, st);
-      add_correction(u64);
+      add_correction(u64, false);
       const double prev = rel;
-      rel = residual(u64, nullptr, false);
+      rel = residual(u64.data(), nullptr);
       if (rel > 0.5 * prev) break;
     }
     u32.assign(u64.begin(), u64.end());
