@@ -377,6 +377,18 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
 constexpr int kChangeReach = 6;
 
 using RowHook = std::function<void(int)>;
+// Called for row y of the finest level after a cycle, with the squared norms of its residual's
+// channels (the stopping rule's measurement).
+using MeasureHook = std::function<void(int y, const float* norms)>;
+
+// Where a cycle of a level starts (Multigrid::vcycle).
+enum class CycleStart {
+  kHeld,        // the correction the level holds, pre-smoothed
+  kFromCoarse,  // full multigrid: the next coarser level's correction, prolongated (the
+                // pre-smoothing's wave writes each row just before its first stage reads it)
+  kRestricted,  // the coarse correction: the last cycle's post-smoothing was the level's last
+                // smoothing, and it restricted the residual it left to the next coarser level
+};
 
 // The restriction of a level's rows as they are completed, in any order, by rows in parallel:
 // coarse row J reads fine rows 2J-1 .. 2J+1, and is restricted by the call that completes the
@@ -472,11 +484,10 @@ class Multigrid {
   template <bool kSet>
   void prolongate_row(int l, int y);
   void solve_coarsest();
-  // `measure`: called for every finest row after the post-smoothing (see smooth()).
-  // With `from_coarse` (full multigrid), the level's correction starts as the prolongated
-  // correction of the next coarser level, which the pre-smoothing's wave writes a row just before
-  // its first stage reads it; otherwise it is the correction held.
-  void vcycle(int l, const RowHook* measure = nullptr, bool from_coarse = false);
+  // `measure`: called for every row after the post-smoothing (see smooth()), with its residual's
+  // squared norms; the wave then also restricts that residual, for a next cycle that starts
+  // with CycleStart::kRestricted.
+  void vcycle(int l, const MeasureHook* measure = nullptr, CycleStart start = CycleStart::kHeld);
   double relative(const std::array<double, NC>& norms) const;
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
@@ -1700,7 +1711,13 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
   if (L.odd) {
     // The finest level, a half row at a time (Level::odd), its codes decoded into registers;
     // `out` holds the row in the values' layout. The operations of the loops below, in their
-    // order (the same bits as in order).
+    // order (the same bits as in order). A e is taken as its couplings' differences,
+    // sum a (e_c - e_nb), plus what the diagonal has beyond the couplings (the links to fixed
+    // pixels, an anchor) times e_c: neighbours of a smooth e are close, so their differences are
+    // exact in float32. As d e_c - sum a e_nb, every pixel's residual carried a rounding error of
+    // e's own size (about 1e-7), which A^-1 amplifies by the square of a region's size: the
+    // cycles' answer stalled 0.34/255 from the exact one on a 1024^2 drawing (bubble.xml), above
+    // the 8-bit stopping rule's bound, and now goes below it.
     const int s = L.stride;
     for (int half = 0; half < 2; ++half) {
       const HalfRow r = half_row(L, y, half);
@@ -1710,25 +1727,34 @@ void Multigrid<NC>::residual_row(int l, int y, const Plane* b_planes, const Plan
         const __mmask16 in = lanes_left(r.count - i);
         const auto load = [&](const float* q) { return _mm512_maskz_loadu_ps(in, q); };
         const Coefficients16 k = finest_coefficients(L, r, i, in, false);
+        const __m512 rest =
+            _mm512_sub_ps(k.d, _mm512_add_ps(_mm512_add_ps(k.w, k.e), _mm512_add_ps(k.s, k.n)));
         for (int c = 0; c < NC; ++c) {
           const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
-          const __m512 t = edge_sum(k.w, k.e, k.s, k.n, o + west, o + east, q, s, load);
+          const __m512 ec = load(q);
+          // sum a (e_nb - e_c), in edge_sum's order
+          __m512 t = _mm512_mul_ps(k.w, _mm512_sub_ps(load(o + west), ec));
+          t = _mm512_fmadd_ps(k.e, _mm512_sub_ps(load(o + east), ec), t);
+          t = _mm512_fmadd_ps(k.s, _mm512_sub_ps(load(q + s), ec), t);
+          t = _mm512_fmadd_ps(k.n, _mm512_sub_ps(load(q - s), ec), t);
           const __m512 v =
-              b_planes
-                  ? _mm512_add_ps(
-                        _mm512_fnmadd_ps(k.d, load(q), load(&(*b_planes)[c * n + r.own + i])), t)
-                  : _mm512_fnmadd_ps(k.d, load(q), t);
+              b_planes ? _mm512_add_ps(
+                             _mm512_fnmadd_ps(rest, ec, load(&(*b_planes)[c * n + r.own + i])), t)
+                       : _mm512_fnmadd_ps(rest, ec, t);
           _mm512_mask_storeu_ps(out[c] + to + i, in, v);
         }
       }
 #else
       for (int i = 0; i < r.count; ++i) {
         const Coefficients1 k = finest_coefficients(L, r, i, false);
+        const float rest = k.d - ((k.w + k.e) + (k.s + k.n));
         for (int c = 0; c < NC; ++c) {
           const float *q = &e_planes[c * n + r.own + i], *o = &e_planes[c * n + r.other + i];
-          const float t = finest_edge_sum(k, q, o, west, east, s);
+          const float ec = q[0];
+          const float t =
+              k.w * (o[west] - ec) + k.e * (o[east] - ec) + k.s * (q[s] - ec) + k.n * (q[-s] - ec);
           out[c][to + i] =
-              b_planes ? t + ((*b_planes)[c * n + r.own + i] - k.d * q[0]) : t - k.d * q[0];
+              b_planes ? t + ((*b_planes)[c * n + r.own + i] - rest * ec) : t - rest * ec;
         }
       }
 #endif
@@ -1943,86 +1969,107 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
 }
 
 template <int NC>
-void Multigrid<NC>::vcycle(int l, const RowHook* measure, bool from_coarse) {
+void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start) {
+  Level& F = levels_[l];
   if (l + 1 == int(levels_.size())) {
     const auto t0 = Clock::now();
     solve_coarsest();
     level_ms_[l] += ms_since(t0);
-    if (measure)
-      for (int y = 0; y < levels_[l].h; ++y) (*measure)(y);
+    if (measure) {  // (a problem of one level)
+      std::vector<float> buffer(size_t(F.stride) * NC);
+      float* out[NC];
+      for (int c = 0; c < NC; ++c) out[c] = &buffer[size_t(c) * F.stride];
+      for (int y = 0; y < F.h; ++y) {
+        float norms[NC];
+        residual_row(l, y, &F.rhs, F.e, out, norms);
+        (*measure)(y, norms);
+      }
+    }
     return;
   }
-  // The residual is restricted inside the pre-smoothing's wave: each residual row is computed
-  // once its neighbourhood is final, while it is in cache, into a ring of the last three rows of
-  // the thread, and coarse row J is restricted by whichever thread completes the last of fine
-  // rows 2J-1 .. 2J+1 (from its ring, computing what it lacks: near chunk boundaries). The ring's
-  // rows are labelled with the pre-smoothing's number, unique in the process (a thread's ring
-  // outlives the solve, and threads may run chunks of other solves in between), so no row of
-  // another pre-smoothing is ever taken for one of this one.
-  Level& F = levels_[l];
+  // The residual is restricted inside a smoothing's wave: each residual row is computed once its
+  // neighbourhood is final, while it is in cache, into a ring of the last three rows of the
+  // thread, and coarse row J is restricted by whichever thread completes the last of fine rows
+  // 2J-1 .. 2J+1 (from its ring, computing what it lacks: near chunk boundaries). The ring's rows
+  // are labelled with the wave's number, unique in the process (a thread's ring outlives the
+  // solve, and threads may run chunks of other solves in between), so no row of another wave is
+  // ever taken for one of this one.
   const Level& C = levels_[l + 1];
   const int fs = F.stride;
-  static std::atomic<std::uint64_t> pre_smoothings{0};
-  const std::uint64_t pass = ++pre_smoothings;
-  RestrictWhenReady ready(F.h, C.h);
+  static std::atomic<std::uint64_t> waves{0};
   struct Ring {
     Plane rows;  // 3 slots of NC rows, each laid out as a level's
     std::uint64_t pass[3] = {0, 0, 0};
     int y[3] = {-1, -1, -1};
   };
-  const RowHook restrict_rows = [&](int y) {
-    thread_local Ring ring;
-    thread_local std::vector<float> zeros;
-    if (ring.rows.size() < size_t(3) * NC * fs) {
-      // The rows go with the old storage, and so do their labels: a larger solve run alongside
-      // (a task of it taken between two of this pass) must not leave a slot that claims a row of
-      // this pass and holds zeros.
-      ring = Ring{};
-      ring.rows.assign(size_t(3) * NC * fs, 0.0f);
-    }
-    if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
-    // Residual row `row` in the ring (x = 0 of each channel's row).
-    const auto residual = [&](int row, const float* out[NC]) {
-      if (row < 0 || row >= F.h) {
-        for (int c = 0; c < NC; ++c) out[c] = zeros.data() + Level::kLeft;
-        return;
+  // The hook of a wave that restricts (and, with `m`, measures) the residual it leaves.
+  const auto restricting = [&](RestrictWhenReady& ready, const MeasureHook* m) {
+    const std::uint64_t pass = ++waves;
+    return RowHook([this, &ready, &F, fs, l, pass, m](int y) {
+      thread_local Ring ring;
+      thread_local std::vector<float> zeros;
+      if (ring.rows.size() < size_t(3) * NC * fs) {
+        // The rows go with the old storage, and so do their labels: a larger solve run
+        // alongside (a task of it taken between two of this pass) must not leave a slot that
+        // claims a row of this pass and holds zeros.
+        ring = Ring{};
+        ring.rows.assign(size_t(3) * NC * fs, 0.0f);
       }
-      const int slot = row % 3;
-      float* rows[NC];
-      for (int c = 0; c < NC; ++c)
-        out[c] = rows[c] = &ring.rows[(size_t(slot) * NC + c) * fs] + Level::kLeft;
-      if (ring.pass[slot] == pass && ring.y[slot] == row) return;
-      for (int c = 0; c < NC; ++c)
-        for (int g : F.ghosts()) rows[c][g] = 0.0f;  // a level's row's ghosts
-      residual_row(l, row, &F.rhs, F.e, rows, nullptr);
-      ring.pass[slot] = pass;
-      ring.y[slot] = row;
-    };
-    const float* unused[NC];
-    residual(y, unused);
-    ready.row_done(y, [&](int J) {
-      const float *north[NC], *centre[NC], *south[NC];
-      residual(2 * J - 1, north);
-      residual(2 * J, centre);
-      residual(2 * J + 1, south);
-      restrict_row(l, J, north, centre, south);
+      if (zeros.size() < size_t(fs)) zeros.assign(size_t(fs), 0.0f);
+      // Residual row `row` in the ring (x = 0 of each channel's row), computed unless it is
+      // there; with `norms`, always computed (the row_done of its own row: not there yet).
+      const auto residual = [&](int row, const float* out[NC], float* norms) {
+        if (row < 0 || row >= F.h) {
+          for (int c = 0; c < NC; ++c) out[c] = zeros.data() + Level::kLeft;
+          return;
+        }
+        const int slot = row % 3;
+        float* rows[NC];
+        for (int c = 0; c < NC; ++c)
+          out[c] = rows[c] = &ring.rows[(size_t(slot) * NC + c) * fs] + Level::kLeft;
+        if (!norms && ring.pass[slot] == pass && ring.y[slot] == row) return;
+        for (int c = 0; c < NC; ++c)
+          for (int g : F.ghosts()) rows[c][g] = 0.0f;  // a level's row's ghosts
+        residual_row(l, row, &F.rhs, F.e, rows, norms);
+        ring.pass[slot] = pass;
+        ring.y[slot] = row;
+      };
+      const float* unused[NC];
+      float norms[NC];
+      residual(y, unused, m ? norms : nullptr);
+      if (m) (*m)(y, norms);
+      ready.row_done(y, [&](int J) {
+        const float *north[NC], *centre[NC], *south[NC];
+        residual(2 * J - 1, north, nullptr);
+        residual(2 * J, centre, nullptr);
+        residual(2 * J + 1, south, nullptr);
+        restrict_row(l, J, north, centre, south);
+      });
     });
   };
   // Levels 2 and coarser are smoothed more (SolverOptions::coarse_smooth): they are cheap.
   const bool coarse = l >= 2;
-  const RowHook interpolate = [&](int y) { prolongate_row<true>(l, y); };
   auto t0 = Clock::now();
-  smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
-         from_coarse ? &interpolate : nullptr);
+  if (start != CycleStart::kRestricted) {
+    RestrictWhenReady ready(F.h, C.h);
+    const RowHook restrict_rows = restricting(ready, nullptr);
+    const RowHook interpolate = [&](int y) { prolongate_row<true>(l, y); };
+    smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
+           start == CycleStart::kFromCoarse ? &interpolate : nullptr);
+  }
   fill_zero(levels_[l + 1].e);
   level_ms_[l] += ms_since(t0);
   vcycle(l + 1);
   t0 = Clock::now();
   // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
-  // operator and can precondition conjugate gradients.
+  // operator and can precondition conjugate gradients. With `measure`, the wave also restricts
+  // the residual it leaves, which a next cycle starting with CycleStart::kRestricted takes.
   const RowHook prolongate = [&](int y) { prolongate_row<false>(l, y); };
-  smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true, measure, &prolongate);
+  RestrictWhenReady ready(F.h, measure ? C.h : 0);
+  const RowHook measure_rows = measure ? restricting(ready, measure) : RowHook();
+  smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true,
+         measure ? &measure_rows : nullptr, &prolongate);
   level_ms_[l] += ms_since(t0);
 }
 
@@ -2454,13 +2501,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   // residual_norms and change_since, without two more passes over the finest level).
   std::vector<double> row_norms(size_t(F.h) * NC, 0.0);
   std::vector<float> row_change(size_t(F.h), 0.0f);
-  const RowHook measure = [&](int y) {
-    thread_local std::vector<float> buffer;  // rows laid out as the level's
-    buffer.resize(size_t(F.stride) * NC);
-    float* out[NC];
-    for (int c = 0; c < NC; ++c) out[c] = &buffer[size_t(c) * F.stride];
-    float norms[NC];
-    residual_row(0, y, &F.rhs, F.e, out, norms);
+  const MeasureHook measure = [&](int y, const float* norms) {
     for (int c = 0; c < NC; ++c) row_norms[size_t(y) * NC + c] = norms[c];
     if (by_error) row_change[size_t(y)] = change_of_row(y, previous_);
   };
@@ -2491,7 +2532,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     fill_zero(levels_.back().e);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
-      vcycle(l, l == 0 ? &measure : nullptr, true);
+      vcycle(l, l == 0 ? &measure : nullptr, CycleStart::kFromCoarse);
       if (l == 0) previous_zero_ = false;
     }
     const bool measured = count > 1;  // (one level: no finest cycle ran)
@@ -2507,9 +2548,16 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     }
     observe(nullptr, st);
   }
-  double last_change = 0;  // of the previous V-cycle, 0 before the first
+  double last_change = 0;            // of the previous V-cycle, 0 before the first
+  bool restricted = full_multigrid;  // level 1 holds the residual of a measured finest cycle
   while (!done() && st.cycles < options_.max_cycles) {
-    vcycle(0, &measure);
+    // No pre-smoothing on the finest level: the last cycle's post-smoothing left it smoothed, and
+    // restricted its residual (measured for the stopping rule) to level 1. Sweeps before the
+    // coarse correction as well cost a wave over the finest level (5-6 ms of a 1024^2 solve's
+    // two cycles) for a little more per cycle: 165 cycles against 173 over 27 solves of nine
+    // drawings at 256^2 to 1024^2, all within the 8-bit bound (docs/performance.md).
+    vcycle(0, &measure, restricted ? CycleStart::kRestricted : CycleStart::kHeld);
+    restricted = true;
     previous_zero_ = false;
     ++st.cycles;
     const double prev = rel;
@@ -2528,7 +2576,8 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     }
     observe(nullptr, st);
     // A cycle that gains less than 2x meets a mode the coarse grids cannot represent: from
-    // here conjugate gradients, with the cycle as preconditioner, take over. Not sooner: CG's
+    // here conjugate gradients, with the symmetric cycle (pre- and post-smoothed) as
+    // preconditioner, take over. Not sooner: CG's
     // stopping rule needs four steps before its first estimate, so cycles that still gain 2-3x
     // stop earlier by themselves (frame 1 of the default scene at 1024^2: 0.36 per cycle, 5
     // cycles instead of 4 cycles and 5 CG steps).

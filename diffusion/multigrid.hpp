@@ -16,15 +16,20 @@
 // barrier and a Dirichlet curve still pins the correction on every level, however thin it is.
 // A coarse point whose fine pixel is fixed is itself fixed.
 //
-// Cycle. Full multigrid (FMG) start, then V(2,2) cycles (V(4,4) on levels 2 and coarser, which
-// are cheap: SolverOptions::coarse_smooth) until the relative residual ||b - A u|| / ||b|| of
-// every channel is below the tolerance, or, with SolverOptions::max_error, until the estimated
-// largest error is below that bound (accelerated by conjugate gradients when they slow down, see
-// SolverOptions::krylov; refined in double precision when the tolerance is below what float32
-// reaches). Smoothing is Gauss-Seidel in an order-independent colouring: red-black on the
-// 5-point finest level, four colours on the 9-point coarse levels; rows are processed in
-// parallel (TBB) and every reduction sums in a fixed order, so the result does not depend on the
-// number of threads. The coarsest level (<= 64 points) is solved exactly with a dense LDLT.
+// Cycle. Full multigrid (FMG) start, then V(0,2) cycles on the finest level (its last
+// post-smoothing left it smoothed, and restricted the residual it measured: the next cycle starts
+// at the coarse correction), V(2,2) on level 1 and V(4,4) on levels 2 and coarser, which are
+// cheap (SolverOptions::coarse_smooth), until the relative residual ||b - A u|| / ||b|| of every
+// channel is below the tolerance, or, with SolverOptions::max_error, until the estimated largest
+// error is below that bound (accelerated by conjugate gradients, with symmetric V(2,2) cycles as
+// their preconditioner, when they slow down, see SolverOptions::krylov; refined in double
+// precision when the tolerance is below what float32 reaches). The finest level's residual is
+// taken from differences of neighbouring values, which float32 holds exactly where the answer is
+// smooth, so that the cycles converge past the rounding of the answer's own size. Smoothing is
+// Gauss-Seidel in an order-independent colouring: red-black on the 5-point finest level, four
+// colours on the 9-point coarse levels; rows are processed in parallel (TBB) and every reduction
+// sums in a fixed order, so the result does not depend on the number of threads. The coarsest level
+// (<= 64 points) is solved exactly with a dense LDLT.
 //
 // Pixels in a region that no fixed or anchored pixel reaches (sealed by Neumann barriers) have no
 // defined value; they are reported in the statistics and set to 0.
@@ -51,6 +56,9 @@ struct SolverOptions {
   // kEightBitError stops at what an 8-bit image can show (tested against Eigen's LDLT).
   double max_error = 0;
   int max_cycles = 100;  // V-cycles (or CG iterations) after the FMG start
+  // Sweeps before and after the coarse correction on levels 0 and 1. The finest level is
+  // pre-smoothed only in full multigrid's visit and in conjugate gradients' preconditioner: the
+  // solve's other cycles start it at the coarse correction (see the file's comment).
   int pre_smooth = 2;
   int post_smooth = 2;
   // Sweeps before and after the coarse correction on levels 2 and coarser. They hold at most a
