@@ -2663,22 +2663,23 @@ Solution Multigrid<NC>::run(const std::vector<float>* guess, std::vector<float>*
           auto* __restrict to = &u[at];
           const float* __restrict even = &F.e[c * nf + F.vat(0, y)];
           const float* __restrict odd = &F.e[c * nf + F.vat(1, y)];
-          if (unwritten) {
-            const std::uint8_t* __restrict given = &p.fixed[p.index(0, y)];
-            const float* __restrict value = &p.value[at];
+          const std::uint8_t* __restrict given = &p.fixed[p.index(0, y)];
+          const float* __restrict value = &p.value[at];
+          // u at pixel x before the correction: what it holds, or (unwritten) initial()'s value
+          const auto add = [&](const auto& before) {
             for (int i = 0; i < pairs; ++i) {
-              const float v0 = value[2 * i], v1 = value[2 * i + 1];
-              to[2 * i] = (given[2 * i] ? v0 : 0.0f) + even[i];
-              to[2 * i + 1] = (given[2 * i + 1] ? v1 : 0.0f) + odd[i];
+              to[2 * i] = before(2 * i) + even[i];
+              to[2 * i + 1] = before(2 * i + 1) + odd[i];
             }
-            if (F.w & 1) to[F.w - 1] = (given[F.w - 1] ? value[F.w - 1] : 0.0f) + even[pairs];
-            continue;
-          }
-          for (int i = 0; i < pairs; ++i) {
-            to[2 * i] += even[i];
-            to[2 * i + 1] += odd[i];
-          }
-          if (F.w & 1) to[F.w - 1] += even[pairs];
+            if (F.w & 1) to[F.w - 1] = before(F.w - 1) + even[pairs];
+          };
+          if (unwritten)
+            add([&](int x) {
+              const float v = value[x];  // loaded before the select: a conditional load is scalar
+              return given[x] ? v : 0.0f;
+            });
+          else
+            add([&](int x) { return to[x]; });
         }
     });
   };
