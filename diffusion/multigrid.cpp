@@ -391,6 +391,11 @@ enum class CycleStart {
                 // smoothing, and it restricted the residual it left to the next coarser level
 };
 
+// What a row of a level becomes in the prolongation of the next coarser level's correction
+// (Multigrid::prolongate_row): e + P e_c (kAdd), 0 + P e_c (kSet), or from + P e_c for another
+// plane `from` of the level's layout (kFrom: e's values kept there, for the stopping rule).
+enum class Prolong { kAdd, kSet, kFrom };
+
 // The restriction of a level's rows as they are completed, in any order, by rows in parallel:
 // coarse row J reads fine rows 2J-1 .. 2J+1, and is restricted by the call that completes the
 // last of them.
@@ -481,14 +486,17 @@ class Multigrid {
                     const float* const south[NC]);
   // Row J of levels_[l+1].rhs = P^T levels_[l].rhs.
   void restrict_rhs_row(int l, int J);
-  // Row y of levels_[l].e += P levels_[l+1].e (kSet: = P levels_[l+1].e).
-  template <bool kSet>
-  void prolongate_row(int l, int y);
+  // Row y of levels_[l].e += P levels_[l+1].e, or as kMode says (`from`: Prolong::kFrom's plane).
+  template <Prolong kMode>
+  void prolongate_row(int l, int y, const Plane* from = nullptr);
   void solve_coarsest();
   // `measure`: called for every row after the post-smoothing (see smooth()), with its residual's
   // squared norms; the wave then also restricts that residual, for a next cycle that starts
-  // with CycleStart::kRestricted.
-  void vcycle(int l, const MeasureHook* measure = nullptr, CycleStart start = CycleStart::kHeld);
+  // with CycleStart::kRestricted. `before`: a plane of the level's layout, with zero ghosts, that
+  // the cycle leaves holding e as the cycle found it (the stopping rule's change, measured as the
+  // post-smoothing ends: see there).
+  void vcycle(int l, const MeasureHook* measure = nullptr, CycleStart start = CycleStart::kHeld,
+              Plane* before = nullptr);
   double relative(const std::array<double, NC>& norms) const;
   double conjugate_gradient(double rel, double tolerance, SolveStats& st);
   void setup();
@@ -499,8 +507,9 @@ class Multigrid {
                                          std::array<double, NC>* b_norms = nullptr,
                                          const RowHook* row_done = nullptr) const;
   double solve_correction(double rel, double tolerance, SolveStats& st);
-  double change_since(Plane& before) const;
-  float change_of_row(int y, Plane& before) const;
+  // The largest change of row y of the finest level's correction since previous_, over its
+  // points and channels.
+  float change_of_row(int y) const;
   // Hands SolverOptions::observer the residual: `residual_padded`, or the finest level's.
   void observe(const Plane* residual_padded, const SolveStats& st) const;
   std::array<double, NC> dot(const Plane& a, const Plane& b) const;
@@ -1916,10 +1925,11 @@ void Multigrid<NC>::restrict_rhs_row(int l, int J) {
 
 // A cell (two fine points) at a time, so that the loops have no branch and vectorise; the sums
 // are the same, term by term, as point by point. With kSet the row's values are replaced by
-// 0 + P e_c, the bits of adding to a row of zeros (0 + -0 is +0), without the zeros' pass.
+// 0 + P e_c, the bits of adding to a row of zeros (0 + -0 is +0), without the zeros' pass; with
+// kFrom by from + P e_c, the bits of adding to e when it held `from`.
 template <int NC>
-template <bool kSet>
-void Multigrid<NC>::prolongate_row(int l, int y) {
+template <Prolong kMode>
+void Multigrid<NC>::prolongate_row(int l, int y, const Plane* from) {
   Level& F = levels_[l];
   const Level& C = levels_[l + 1];
   const Prolongation& P = prolong_[l];
@@ -1936,23 +1946,35 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
     ahead(P.x0), ahead(P.x1);
   }
   // The fine row's even points at even[k * I], its odd ones at odd[k * I]: k = 1 on the finest
-  // level (two halves, Level::odd), 2 elsewhere (in order).
-  // q = q + v, or with kSet q = 0 + v.
-  const auto put = [](float& q, float v) { q = (kSet ? 0.0f : q) + v; };
+  // level (two halves, Level::odd), 2 elsewhere (in order). Point i of the row becomes
+  // was(i) + v: e's value there (kAdd), +0 (kSet) or from's value (kFrom).
   const auto add = [&](auto step) {
     constexpr int k = decltype(step)::value;
     for (int c = 0; c < NC; ++c) {
       float* __restrict even = &F.e[c * nf + F.vat(0, y)];
       float* __restrict odd = &F.e[c * nf + F.vat(1, y)];
+      // (kFrom: `from` is another plane, so its rows overlap none of e's.)
+      const float* __restrict from_even =
+          kMode == Prolong::kFrom ? &(*from)[c * nf + F.vat(0, y)] : nullptr;
+      const float* __restrict from_odd =
+          kMode == Prolong::kFrom ? &(*from)[c * nf + F.vat(1, y)] : nullptr;
+      const auto put = [&](float* q, const float* source, int i, float v) {
+        if constexpr (kMode == Prolong::kSet)
+          q[i] = 0.0f + v;
+        else if constexpr (kMode == Prolong::kFrom)
+          q[i] = source[i] + v;
+        else
+          q[i] = q[i] + v;
+      };
       const float* __restrict ec = &C.e[c * nc + row];
       if (!(y & 1)) {
         const float* __restrict x0 = &P.x0[row], * __restrict x1 = &P.x1[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          put(even[k * I], ec[I]);
-          put(odd[k * I], x0[I] * ec[I] + x1[I] * ec[I + 1]);
+          put(even, from_even, k * I, ec[I]);
+          put(odd, from_odd, k * I, x0[I] * ec[I] + x1[I] * ec[I + 1]);
         }
-        if (F.w & 1) put(even[k * pairs], ec[pairs]);
+        if (F.w & 1) put(even, from_even, k * pairs, ec[pairs]);
       } else {
         const float* __restrict es = ec + cs;
         const float* __restrict py0 = &P.y0[row], * __restrict py1 = &P.y1[row];
@@ -1960,11 +1982,12 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
         const float* __restrict c01 = &P.c01[row], * __restrict c11 = &P.c11[row];
 #pragma GCC ivdep
         for (int I = 0; I < pairs; ++I) {
-          put(even[k * I], py0[I] * ec[I] + py1[I] * es[I]);
-          put(odd[k * I],
+          put(even, from_even, k * I, py0[I] * ec[I] + py1[I] * es[I]);
+          put(odd, from_odd, k * I,
               c00[I] * ec[I] + c10[I] * ec[I + 1] + c01[I] * es[I] + c11[I] * es[I + 1]);
         }
-        if (F.w & 1) put(even[k * pairs], py0[pairs] * ec[pairs] + py1[pairs] * es[pairs]);
+        if (F.w & 1)
+          put(even, from_even, k * pairs, py0[pairs] * ec[pairs] + py1[pairs] * es[pairs]);
       }
     }
   };
@@ -1975,8 +1998,12 @@ void Multigrid<NC>::prolongate_row(int l, int y) {
 }
 
 template <int NC>
-void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start) {
+void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start, Plane* before) {
   Level& F = levels_[l];
+  // Where the cycle changes e before its post-smoothing, `before` is a copy (the coarsest level,
+  // a pre-smoothing); elsewhere the post-smoothing's prolongation writes e from it.
+  if (before && (l + 1 == int(levels_.size()) || start != CycleStart::kRestricted))
+    std::copy(F.e.begin(), F.e.end(), before->begin());
   if (l + 1 == int(levels_.size())) {
     const auto t0 = Clock::now();
     solve_coarsest();
@@ -2059,7 +2086,7 @@ void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start) 
   if (start != CycleStart::kRestricted) {
     RestrictWhenReady ready(F.h, C.h);
     const RowHook restrict_rows = restricting(ready, nullptr);
-    const RowHook interpolate = [&](int y) { prolongate_row<true>(l, y); };
+    const RowHook interpolate = [&](int y) { prolongate_row<Prolong::kSet>(l, y); };
     smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
            start == CycleStart::kFromCoarse ? &interpolate : nullptr);
   }
@@ -2071,7 +2098,17 @@ void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start) 
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
   // operator and can precondition conjugate gradients. With `measure`, the wave also restricts
   // the residual it leaves, which a next cycle starting with CycleStart::kRestricted takes.
-  const RowHook prolongate = [&](int y) { prolongate_row<false>(l, y); };
+  // With `before` (and e as the cycle found it), e and `before` trade storage and the
+  // prolongation writes e = before + P e_c: the same values as adding to e, and `before` keeps
+  // e's old ones without a copy (at 1024^2, a pass over 12 MB less per measured cycle).
+  const bool keep = before && start == CycleStart::kRestricted;
+  if (keep) std::swap(F.e, *before);
+  const RowHook prolongate = [&](int y) {
+    if (keep)
+      prolongate_row<Prolong::kFrom>(l, y, before);
+    else
+      prolongate_row<Prolong::kAdd>(l, y);
+  };
   RestrictWhenReady ready(F.h, measure ? C.h : 0);
   const RowHook measure_rows = measure ? restricting(ready, measure) : RowHook();
   smooth(l, coarse ? options_.coarse_smooth : options_.post_smooth, true,
@@ -2238,6 +2275,9 @@ void Multigrid<NC>::setup() {
   // only what can have changed is rebuilt (build_coarse), which is the same to the bit.
   const bool reuse = ws_.width == p.width && ws_.height == p.height && int(levels_.size()) == count;
   ws_.width = ws_.height = 0;  // until this setup is complete
+  // previous_ trades storage with the finest e (vcycle's `before`): in a new layout its ghost
+  // points are zeroed with it (solve_correction assigns it anew).
+  if (!reuse) previous_.clear();
   levels_.resize(count);
   prolong_.resize(count - 1);
   std::vector<std::uint8_t> changed = build_finest(fixed_, !reuse);
@@ -2451,22 +2491,8 @@ std::array<double, NC> Multigrid<NC>::residual_double(const T* u, Plane& r_padde
   return norms;
 }
 
-// Largest change of the finest level's correction since `before`, over every point and channel;
-// `before` then holds the current correction. A maximum is exact in any order, so the result does
-// not depend on how rows are split.
 template <int NC>
-double Multigrid<NC>::change_since(Plane& before) const {
-  const Level& L = levels_[0];
-  std::vector<float> rows(size_t(L.h), 0.0f);
-  for_rows(L.h, L.w * NC, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) rows[size_t(y)] = change_of_row(y, before);
-  });
-  return rows.empty() ? 0.0 : double(*std::max_element(rows.begin(), rows.end()));
-}
-
-// change_since for row y of the finest level.
-template <int NC>
-float Multigrid<NC>::change_of_row(int y, Plane& before) const {
+float Multigrid<NC>::change_of_row(int y) const {
   const Level& L = levels_[0];
   const size_t n = L.padded();
   float m = 0;
@@ -2474,20 +2500,14 @@ float Multigrid<NC>::change_of_row(int y, Plane& before) const {
     for (const Level::Run& run : L.runs()) {
       const size_t start = c * n + L.at(0, y) + run.offset;
       const float* __restrict e = &L.e[start];
-      float* __restrict b = &before[start];
-      if (previous_zero_ && &before == &previous_) {  // e - 0 is e, to the bit
+      if (previous_zero_) {  // e - 0 is e, to the bit
 #pragma omp simd reduction(max : m)
-        for (int i = 0; i < run.count; ++i) {
-          m = std::max(m, std::abs(e[i]));
-          b[i] = e[i];
-        }
+        for (int i = 0; i < run.count; ++i) m = std::max(m, std::abs(e[i]));
         continue;
       }
+      const float* __restrict b = &previous_[start];
 #pragma omp simd reduction(max : m)
-      for (int i = 0; i < run.count; ++i) {
-        m = std::max(m, std::abs(e[i] - b[i]));
-        b[i] = e[i];
-      }
+      for (int i = 0; i < run.count; ++i) m = std::max(m, std::abs(e[i] - b[i]));
     }
   return m;
 }
@@ -2503,13 +2523,13 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   const bool by_error = options_.max_error > 0;
   Level& F = levels_[0];
   // After a finest cycle: the residual's norms and the change since the last cycle, measured
-  // row by row in the post-smoothing's wave while the rows are in cache (the same sums as
-  // residual_norms and change_since, without two more passes over the finest level).
+  // row by row in the post-smoothing's wave while the rows are in cache (the sums of
+  // residual_norms, and the change from previous_, without two more passes over the finest level).
   std::vector<double> row_norms(size_t(F.h) * NC, 0.0);
   std::vector<float> row_change(size_t(F.h), 0.0f);
   const MeasureHook measure = [&](int y, const float* norms) {
     for (int c = 0; c < NC; ++c) row_norms[size_t(y) * NC + c] = norms[c];
-    if (by_error) row_change[size_t(y)] = change_of_row(y, previous_);
+    if (by_error) row_change[size_t(y)] = change_of_row(y);
   };
   const auto measured_change = [&] {
     return row_change.empty() ? 0.0
@@ -2518,7 +2538,8 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   double estimate = rel == 0 ? 0.0 : std::numeric_limits<double>::infinity();
   const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
   // The correction before the first cycle is 0 (F.e above): previous_ is not filled with zeros
-  // but marked as such (previous_zero_) until the first measurement has copied the correction.
+  // but marked as such (previous_zero_) until a cycle keeps the correction it started from there
+  // (vcycle's `before`). Its ghost points are 0, as e's: the two trade storage.
   if (by_error) {
     if (previous_.size() != F.e.size()) assign_touched(previous_, F.e.size(), 0.0f);
     previous_zero_ = true;
@@ -2548,7 +2569,6 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     // which the finest cycle removes far faster than the error that remains (measured: the
     // estimate would be 10-100x too small).
     if (by_error) {
-      if (!measured) change_since(previous_);
       previous_zero_ = false;
       st.error_estimates.push_back(estimate);
     }
@@ -2562,7 +2582,8 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     // coarse correction as well cost a wave over the finest level (5-6 ms of a 1024^2 solve's
     // two cycles) for a little more per cycle: 165 cycles against 173 over 27 solves of nine
     // drawings at 256^2 to 1024^2, all within the 8-bit bound (docs/performance.md).
-    vcycle(0, &measure, restricted ? CycleStart::kRestricted : CycleStart::kHeld);
+    vcycle(0, &measure, restricted ? CycleStart::kRestricted : CycleStart::kHeld,
+           by_error && !previous_zero_ ? &previous_ : nullptr);
     restricted = true;
     previous_zero_ = false;
     ++st.cycles;
