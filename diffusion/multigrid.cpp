@@ -370,12 +370,17 @@ PlainPoints plain_points(const Level& F, const Level& C, const std::vector<std::
   return out;
 }
 
-// How far, in fine points, a change of the fine operator reaches into the coarse level: a coarse
-// point's Galerkin stencil reads the stencils of the fine points within 1 of its own and the
-// prolongation rows of those within 2; a prolongation row reads the stencils within 1 of its
-// point and the coarse points around; a stencil reads the couplings stored within 1. That is 5;
-// one more for safety (the test of the rebuild compares it with a full one, bit for bit).
-constexpr int kChangeReach = 6;
+// How far, in fine points, a change of the fine operator reaches into the coarse level. Point q's
+// stencil reads what is stored at q and at its west, north-west, north and north-east neighbours
+// (Level: each coupling is stored once, at one of its two points). A prolongation row reads its
+// point's stencil and the coarse alive flags around it; a cell centre's also reads its four edge
+// neighbours' stencils (through their weights): at most 2 points from the centre. The Galerkin
+// stencil of coarse point K reads the stencils of the fine points within 1 of 2K and the
+// prolongation rows of those within 2: edge points' rows, which read what is stored within 1 of
+// them, and centres' rows, which read within 2, but the centres near K are all within 1 of 2K.
+// That is 3. The tests check it: an incremental rebuild gives a full one's bits, and one that
+// reaches 2 does not (at 6, the old margin, a new drawing's setup rebuilt about a fifth more).
+constexpr int kChangeReach = 3;
 
 using RowHook = std::function<void(int)>;
 // Called for row y of the finest level after a cycle, with the squared norms of its residual's
