@@ -1670,15 +1670,17 @@ void Multigrid<NC>::smooth(int l, int sweeps, bool reverse, const RowHook* row_d
       });
     return;
   }
-  // Chunks of at least 4 rows per stage and kPointsPerChunk points, and about four per worker
-  // thread, no more: enough to balance the threads, and each chunk boundary leaves
-  // stages (stages - 1) row-stages to the second phase, after a barrier and out of cache. At
-  // 1024^2 the finest level's waves had 64 chunks, a fifth of their work in the second phase;
-  // with 8 (two threads) its share of a new drawing's cycles fell from 16-17 to 14 ms.
+  // Chunks: one to four per worker thread, the same number for each (3 chunks on two threads
+  // left one idle for a third of the wave), of kPointsPerChunk points or more where there are
+  // enough, and at least 4 rows per stage. No more: each chunk boundary leaves stages (stages - 1)
+  // row-stages to the second phase, after a barrier and out of cache. At 1024^2 the finest
+  // level's waves had 64 chunks, a fifth of their work in the second phase; with 8 (two threads)
+  // its share of a new drawing's cycles fell from 16-17 to 14 ms.
   constexpr int kPointsPerChunk = 16384;
-  const int chunks = std::clamp(
-      std::min(L.w * L.h * NC / kPointsPerChunk, 4 * tbb::this_task_arena::max_concurrency()), 1,
-      std::max(1, L.h / (4 * stages)));
+  const int threads = tbb::this_task_arena::max_concurrency();
+  const int chunks =
+      std::clamp(threads * std::clamp(L.w * L.h * NC / (threads * kPointsPerChunk), 1, 4), 1,
+                 std::max(1, L.h / (4 * stages)));
   const auto first_row = [&](int c) { return int(int64_t(L.h) * c / chunks); };
   const auto parallel = [&](int first, int last, const auto& body) {
     if (last - first == 1)
