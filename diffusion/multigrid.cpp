@@ -166,6 +166,14 @@ struct Level {
   }
 };
 
+// e = 0 on row y of level L, every channel (its ghosts are 0 already).
+void zero_row(Level& L, int y) {
+  const size_t n = L.padded();
+  for (size_t c = 0; c < L.e.size() / n; ++c)
+    for (const Level::Run& run : L.runs())
+      std::fill_n(&L.e[c * n + L.at(0, y) + run.offset], run.count, 0.0f);
+}
+
 // Weights of the fine points of coarse cell (I,J) (stored on the coarse level's padded grid):
 //   x0, x1: fine (2I+1, 2J) from coarse (I,J) and (I+1,J)
 //   y0, y1: fine (2I, 2J+1) from coarse (I,J) and (I,J+1)
@@ -390,6 +398,8 @@ using MeasureHook = std::function<void(int y, const float* norms)>;
 // Where a cycle of a level starts (Multigrid::vcycle).
 enum class CycleStart {
   kHeld,        // the correction the level holds, pre-smoothed
+  kZero,        // the correction 0, pre-smoothed: the pre-smoothing's wave writes each row's zeros
+                // just before its first stage reads it (rather than a pass of their own)
   kFromCoarse,  // full multigrid: the next coarser level's correction, prolongated (the
                 // pre-smoothing's wave writes each row just before its first stage reads it)
   kRestricted,  // the coarse correction: the last cycle's post-smoothing was the level's last
@@ -2013,6 +2023,7 @@ void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start, 
     std::copy(F.e.begin(), F.e.end(), before->begin());
   if (l + 1 == int(levels_.size())) {
     const auto t0 = Clock::now();
+    if (start == CycleStart::kZero) fill_zero(F.e);  // (its points that are not free stay 0)
     solve_coarsest();
     level_ms_[l] += ms_since(t0);
     if (measure) {  // (a problem of one level)
@@ -2094,12 +2105,14 @@ void Multigrid<NC>::vcycle(int l, const MeasureHook* measure, CycleStart start, 
     RestrictWhenReady ready(F.h, C.h);
     const RowHook restrict_rows = restricting(ready, nullptr);
     const RowHook interpolate = [&](int y) { prolongate_row<Prolong::kSet>(l, y); };
+    const RowHook zeros = [&](int y) { zero_row(F, y); };
     smooth(l, coarse ? options_.coarse_smooth : options_.pre_smooth, false, &restrict_rows,
-           start == CycleStart::kFromCoarse ? &interpolate : nullptr);
+           start == CycleStart::kFromCoarse ? &interpolate
+           : start == CycleStart::kZero     ? &zeros
+                                            : nullptr);
   }
-  fill_zero(levels_[l + 1].e);
   level_ms_[l] += ms_since(t0);
-  vcycle(l + 1);
+  vcycle(l + 1, nullptr, CycleStart::kZero);
   t0 = Clock::now();
   // The prolongation runs inside the post-smoothing's wave, a row just before the first stage
   // reads it. Post-smoothing visits the colours in reverse order: the cycle is then a symmetric
@@ -2172,8 +2185,7 @@ double Multigrid<NC>::conjugate_gradient(double rel, double tolerance, SolveStat
   const auto done = [&] { return by_error ? estimate <= options_.max_error : rel <= tolerance; };
   while (!done() && st.cycles < options_.max_cycles) {
     L.rhs = r;
-    fill_zero(L.e);
-    vcycle(0);  // z = M r, in L.e
+    vcycle(0, nullptr, CycleStart::kZero);  // z = M r, in L.e
     const std::array<double, NC> rz = dot(r, L.e);
     for (int c = 0; c < NC; ++c) {
       const float beta = rz_old[c] == 0 ? 0.0f : float(rz[c] / rz_old[c]);
