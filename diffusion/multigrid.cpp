@@ -750,7 +750,11 @@ std::vector<std::uint8_t> Multigrid<NC>::build_coarse(int l,
   PlainPoints plain = plain_points(F, C, points, options_.copy_plain_stencils);
   build_prolongation(l, points, plain);
   std::vector<std::uint8_t> out = galerkin_product(l, points, plain);
-  for (size_t k = 0; k < alive_changed.size(); ++k) out[k] |= alive_changed[k];
+  // (Plain pointers and a local count: a byte store may alias the vectors' own members, which
+  // kept this loop scalar, 0.2 ms at 1024^2.)
+  std::uint8_t* const to = out.data();
+  const std::uint8_t* const from = alive_changed.data();
+  for (size_t k = 0, n = alive_changed.size(); k < n; ++k) to[k] |= from[k];
   C.plain = std::move(plain.flags);
   return out;
 }
