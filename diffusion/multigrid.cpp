@@ -1204,7 +1204,6 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
   // The fine points of each parity of x: x = 2I + parity < F.w.
   const int columns[2] = {(F.w + 1) / 2, F.w / 2};
   for_rows(C.h, C.w * 32, [&](int J0, int J1) {
-    const auto store = stencil_store();
     // Plain coarse points (plain_points) are computed once, at the model.
     const std::uint8_t *const todo = plain.todo.data(), *const alive = C.alive.data();
     const int cw = C.w;
@@ -1219,7 +1218,6 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
     const int y_first = 2 * J0 - 1, y_count = 2 * (J1 - J0) + 1;
     const size_t row_floats = size_t(2) * 9 * lanes;
     std::unique_ptr<float[]> ap, coeff;
-    std::vector<double> sums;
     const auto ap_at = [&](int y, int parity) {
       return &ap[size_t(y - y_first) * row_floats + size_t(parity) * 9 * lanes];
     };
@@ -1233,7 +1231,6 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
         ap.reset(new float[size_t(y_count) * row_floats]);
         coeff.reset(new float[size_t(9) * lanes]);
         in.coeff = coeff.get();
-        sums.resize(size_t(5) * lanes);
       }
       const int a_lo = i_lo - 1, a_hi = i_hi;  // lanes read, as columns
       // The task's rows with a point to compute in these columns.
@@ -1280,6 +1277,71 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
           rows[oy + 1][1] = ap_at(2 * J + oy, 0) + 1;
           rows[oy + 1][2] = ap_at(2 * J + oy, 1) + 1;
         }
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+        // Eight points at a time, in double: each lane's terms in the scalar loop's order (the
+        // products of two floats are exact in double, so fused multiply-adds give its bits), and
+        // the stores and change flags of store(), masked to the points to compute. The scalar
+        // loops below ran a point at a time, a third of a new drawing's Galerkin product.
+        float* const arrays[6] = {C.diag.data(), C.inv_diag.data(), C.ae.data(),
+                                  C.as.data(),   C.ase.data(),      C.asw.data()};
+        std::uint8_t* const changes = rebuild ? changed.data() : nullptr;
+        for (int I = i_lo; I < i_hi; I += 8) {
+          const __mmask8 lanes8 = __mmask8(lanes_left(i_hi - I));
+          const size_t kc = k0 + I;
+          const auto widen = [&](const float* q) {
+            return _mm512_cvtps_pd(_mm256_maskz_loadu_ps(lanes8, q));
+          };
+          const __m512d weight[3][3] = {
+              {widen(&in.c11[kc - cs - 1]), widen(&in.y1[kc - cs]), widen(&in.c01[kc - cs])},
+              {widen(&in.x1[kc - 1]), _mm512_set1_pd(1.0), widen(&in.x0[kc])},
+              {widen(&in.c10[kc - 1]), widen(&in.y0[kc]), widen(&in.c00[kc])}};
+          __m512d acc[5];
+          for (__m512d& a : acc) a = _mm512_setzero_pd();
+          constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
+#pragma GCC unroll 3
+          for (int oy = -1; oy <= 1; ++oy)
+#pragma GCC unroll 3
+            for (int ox = -1; ox <= 1; ++ox) {
+              const float* row = rows[oy + 1][ox + 1] + I;
+              const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
+#pragma GCC unroll 5
+              for (int m = 0; m < 5; ++m) {
+                const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
+                if (sx < 0 || sx > 2 || sy > 2) continue;
+                acc[m] = _mm512_fmadd_pd(weight[oy + 1][ox + 1], widen(row + (sy * 3 + sx) * lanes),
+                                         acc[m]);
+              }
+            }
+          const __mmask16 lanes16 = lanes8;
+          const __mmask8 compute =
+              __mmask8(_mm_mask_cmpeq_epi8_mask(lanes16, _mm_maskz_loadu_epi8(lanes16, todo + kc),
+                                                _mm_set1_epi8(PlainPoints::kCompute)));
+          if (!compute) continue;
+          const __m128i live = _mm_maskz_loadu_epi8(compute, alive + kc);
+          const __mmask8 alive8 = __mmask8(_mm_test_epi8_mask(live, live));
+          const __m512d d = acc[0], sign = _mm512_set1_pd(-0.0);
+          const __mmask8 positive = _mm512_cmp_pd_mask(d, _mm512_setzero_pd(), _CMP_GT_OQ);
+          const __m256 value[6] = {
+              _mm512_cvtpd_ps(d),
+              _mm512_cvtpd_ps(_mm512_maskz_div_pd(positive, _mm512_set1_pd(1.0), d)),
+              _mm512_cvtpd_ps(_mm512_xor_pd(acc[1], sign)),
+              _mm512_cvtpd_ps(_mm512_xor_pd(acc[2], sign)),
+              _mm512_cvtpd_ps(_mm512_xor_pd(acc[3], sign)),
+              _mm512_cvtpd_ps(_mm512_xor_pd(acc[4], sign))};
+          __mmask8 differs = 0;
+          for (int m = 0; m < 6; ++m) {
+            // (A point that is not alive: zeros, as store() writes them.)
+            const __m256 v = _mm256_maskz_mov_ps(alive8, value[m]);
+            const __m256 before = _mm256_maskz_loadu_ps(compute, arrays[m] + kc);
+            differs |= _mm256_mask_cmpneq_epi32_mask(compute, _mm256_castps_si256(before),
+                                                     _mm256_castps_si256(v));
+            _mm256_mask_storeu_ps(arrays[m] + kc, compute, v);
+          }
+          if (changes) _mm_mask_storeu_epi8(changes + kc, compute, _mm_maskz_set1_epi8(differs, 1));
+        }
+#else
+        const auto store = stencil_store();
+        std::vector<double> sums(size_t(5) * lanes);
         double* s = sums.data();
         for (int I = i_lo; I < i_hi; ++I) {
           const size_t kc = k0 + I;
@@ -1317,6 +1379,7 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
           store(kc, {float(d), d > 0 ? float(1.0 / d) : 0.0f, float(-s[lanes + I]),
                      float(-s[2 * lanes + I]), float(-s[3 * lanes + I]), float(-s[4 * lanes + I])});
         }
+#endif
       }
     };
     // Runs of wanted columns, each computed on its own: the points to compute lie near the
