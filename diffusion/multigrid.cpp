@@ -810,22 +810,42 @@ inline Coefficients16 finest_coefficients(const Level& F, const HalfRow& r, int 
   return k;
 }
 
-// build_prolongation's weights from the finest level, sixteen coarse points of a row at a time:
-// the points I .. I+15 of row J flagged in `compute`. The finest level's couplings are 0 or 1
-// and it has no corner couplings, so every product of build_prolongation's formulas is exact
-// (and a corner's term adds +0 to a sum that is not -0): what is left are its differences,
-// comparisons and divisions, made here in its order. The same bits, lane by lane.
-struct FinestPoints {  // sixteen fine points of one parity of x in a row
-  Coefficients16 k;    // the diagonal and the couplings, as in stencil_at()
+// build_prolongation's weights sixteen coarse points of a row at a time: the points I .. I+15 of
+// row J flagged in `compute`, with its formulas' operations in their order (the products that
+// GCC contracts as fused multiply-adds, as such), so the same bits lane by lane. The finest
+// level has no corner couplings: their terms add +0 to sums that are not -0, and subtract +0.
+struct Points16 {                        // sixteen fine points of one parity of x in a row
+  __m512 d, e, w, n, s, ne, nw, se, sw;  // as stencil_at() gives them
   __mmask16 alive;
 };
+// v at the points x = x0 + 2i, i = 0..15, of row y of a level in order (x0 >= -1; the places past
+// the ghost at x = w read as 0).
+inline __m512 every_other(const Level& L, const Plane& v, int x0, int y) {
+  const float* at = &v[L.at(x0, y)];
+  const int left = L.w + 1 - x0;
+  const __m512 lo = _mm512_maskz_loadu_ps(lanes_left(left), at);
+  const __m512 hi = _mm512_maskz_loadu_ps(lanes_left(left - 16), at + 16);
+  return _mm512_permutex2var_ps(
+      lo, _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30), hi);
+}
 // The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`. Always inlined:
 // its registers are its caller's (and out of line, GCC 12 takes the intrinsics' undefined
 // operands for uninitialised values).
-[[gnu::always_inline]] inline FinestPoints finest_points(const Level& F, int I0, int parity, int y,
-                                                         __mmask16 in) {
-  FinestPoints f;
-  f.k = finest_coefficients(F, half_row(F, y, parity), I0, in, false);
+[[gnu::always_inline]] inline Points16 points16(const Level& F, int I0, int parity, int y,
+                                                __mmask16 in) {
+  Points16 f;
+  if (!F.code.empty()) {
+    const Coefficients16 k = finest_coefficients(F, half_row(F, y, parity), I0, in, false);
+    f.d = k.d, f.e = k.e, f.w = k.w, f.n = k.n, f.s = k.s;
+    f.ne = f.nw = f.se = f.sw = _mm512_setzero_ps();
+  } else {
+    const int x = 2 * I0 + parity;
+    f.d = every_other(F, F.diag, x, y);
+    f.e = every_other(F, F.ae, x, y), f.w = every_other(F, F.ae, x - 1, y);
+    f.n = every_other(F, F.as, x, y - 1), f.s = every_other(F, F.as, x, y);
+    f.ne = every_other(F, F.asw, x + 1, y - 1), f.nw = every_other(F, F.ase, x - 1, y - 1);
+    f.se = every_other(F, F.ase, x, y), f.sw = every_other(F, F.asw, x, y);
+  }
   // The alive flags are in order: bytes x = 2 I0 .. 2 I0 + 31, this parity's every other one.
   const int left = F.w - 2 * I0;
   const __mmask32 bytes = left >= 32 ? ~__mmask32(0) : left <= 0 ? 0 : (__mmask32(1) << left) - 1;
@@ -834,14 +854,16 @@ struct FinestPoints {  // sixteen fine points of one parity of x in a row
   f.alive = __mmask16(in & _mm_test_epi8_mask(_mm256_cvtepi16_epi8(pairs), _mm_set1_epi8(1)));
   return f;
 }
-// Collapse::weight of build_prolongation for a coupling of 0 or 1 (`direct`): 0 where the
-// coupling is below 1e-3 of the diagonal or the coarse neighbour is not alive, else the coupling
-// (plus the corners' +0).
-inline __m512 collapsed_weight(__m512 direct, __m512 d, __m512 coarse_alive) {
+// build_prolongation's Collapse, sixteen at a time.
+struct Collapse16 {
+  __m512 weight, self;
+};
+inline Collapse16 collapse16(__m512 direct, __m512 beside, __m512 coarse_alive, __m512 d) {
   const __mmask16 weak =
       _mm512_cmp_ps_mask(direct, _mm512_mul_ps(_mm512_set1_ps(1e-3f), d), _CMP_LE_OQ);
   const __mmask16 dead = _mm512_cmp_ps_mask(coarse_alive, _mm512_setzero_ps(), _CMP_EQ_OQ);
-  return _mm512_maskz_mov_ps(__mmask16(~weak & ~dead), direct);
+  return {_mm512_maskz_add_ps(__mmask16(~weak & ~dead), direct, beside),
+          _mm512_maskz_mov_ps(weak, beside)};
 }
 // ratio() of build_prolongation: num / den where den > 1e-6, else 0.
 inline __m512 ratio16(__m512 num, __m512 den) {
@@ -849,8 +871,10 @@ inline __m512 ratio16(__m512 num, __m512 den) {
   return _mm512_maskz_div_ps(ok, num, den);
 }
 // The coarse alive flags of points I0 .. I0+15 from `at` (as 0 or 1).
+// (The zero-masked conversions: GCC 12 takes the plain ones' undefined operands for uninitialised
+// values in some of the places this is inlined.)
 inline __m512 coarse_alive16(const std::uint8_t* at, __mmask16 in) {
-  return _mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(_mm_maskz_loadu_epi8(in, at)));
+  return _mm512_maskz_cvtepi32_ps(in, _mm512_maskz_cvtepu8_epi32(in, _mm_maskz_loadu_epi8(in, at)));
 }
 #endif
 
@@ -914,8 +938,8 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
   // (SolverOptions::copy_plain_stencils off: the one-point path, the reference that tests
   // compare this one with.)
-  if (!F.nine_point && options_.copy_plain_stencils) {
-    // From the finest level: sixteen coarse points at a time (finest_points()), the same bits.
+  if (options_.copy_plain_stencils) {
+    // Sixteen coarse points at a time (points16()), the same bits.
     const auto rows = [&](const auto& sixteen) {
       for_rows(C.h, C.w * 8, [&](int J0, int J1) {
         const std::uint8_t* todo = plain.todo.data();
@@ -933,24 +957,30 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
     const auto store = [&](Plane& v, size_t kc, __mmask16 m, __m512 x) {
       _mm512_mask_storeu_ps(&v[kc], m, x);
     };
+    const auto sub = [](__m512 a, __m512 b) { return _mm512_sub_ps(a, b); };
+    const auto add = [](__m512 a, __m512 b) { return _mm512_add_ps(a, b); };
     rows([&](int I0, int J, size_t kc, __mmask16 compute) {
       const __m512 zero = _mm512_setzero_ps(), alive = coarse_alive16(&C.alive[kc], compute);
       __m512 x0 = zero, x1 = zero, y0 = zero, y1 = zero;
       // Fine points (2I+1, 2J), where 2I+1 < F.w.
       if (const __mmask16 xs = compute & lanes_left(F.odd_count() - I0)) {
-        const FinestPoints f = finest_points(F, I0, 1, 2 * J, xs);
-        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.k.d, f.k.n), f.k.s);
-        const __m512 east = coarse_alive16(&C.alive[kc + 1], compute);
-        x0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.w, f.k.d, alive), den));
-        x1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.e, f.k.d, east), den));
+        const Points16 f = points16(F, I0, 1, 2 * J, xs);
+        const Collapse16 west = collapse16(f.w, add(f.nw, f.sw), alive, f.d);
+        const Collapse16 east =
+            collapse16(f.e, add(f.ne, f.se), coarse_alive16(&C.alive[kc + 1], compute), f.d);
+        const __m512 den = sub(sub(sub(sub(f.d, f.n), f.s), west.self), east.self);
+        x0 = _mm512_maskz_mov_ps(f.alive, ratio16(west.weight, den));
+        x1 = _mm512_maskz_mov_ps(f.alive, ratio16(east.weight, den));
       }
       // Fine points (2I, 2J+1), where 2J+1 < F.h.
       if (2 * J + 1 < F.h) {
-        const FinestPoints f = finest_points(F, I0, 0, 2 * J + 1, compute);
-        const __m512 den = _mm512_sub_ps(_mm512_sub_ps(f.k.d, f.k.w), f.k.e);
-        const __m512 south = coarse_alive16(&C.alive[kc + C.stride], compute);
-        y0 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.n, f.k.d, alive), den));
-        y1 = _mm512_maskz_mov_ps(f.alive, ratio16(collapsed_weight(f.k.s, f.k.d, south), den));
+        const Points16 f = points16(F, I0, 0, 2 * J + 1, compute);
+        const Collapse16 north = collapse16(f.n, add(f.nw, f.ne), alive, f.d);
+        const Collapse16 south =
+            collapse16(f.s, add(f.sw, f.se), coarse_alive16(&C.alive[kc + C.stride], compute), f.d);
+        const __m512 den = sub(sub(sub(sub(f.d, f.w), f.e), north.self), south.self);
+        y0 = _mm512_maskz_mov_ps(f.alive, ratio16(north.weight, den));
+        y1 = _mm512_maskz_mov_ps(f.alive, ratio16(south.weight, den));
       }
       store(P.x0, kc, compute, x0);
       store(P.x1, kc, compute, x1);
@@ -964,20 +994,24 @@ void Multigrid<NC>::build_prolongation(int l, const std::vector<std::uint8_t>* r
       // Fine points (2I+1, 2J+1), where 2I+1 < F.w and 2J+1 < F.h.
       const __mmask16 cs = compute & lanes_left(F.odd_count() - I0);
       if (cs && 2 * J + 1 < F.h) {
-        const FinestPoints f = finest_points(F, I0, 1, 2 * J + 1, cs);
-        const __m512 inv = ratio16(_mm512_set1_ps(1.0f), f.k.d);
+        const Points16 f = points16(F, I0, 1, 2 * J + 1, cs);
+        const __m512 inv = ratio16(_mm512_set1_ps(1.0f), f.d);
         const auto load = [&](const Plane& v, size_t k) {
           return _mm512_maskz_loadu_ps(cs, &v[k]);
         };
         const size_t below = kc + C.stride;
-        const auto weight = [&](__m512 a, __m512 pa, __m512 b, __m512 pb) {
-          return _mm512_maskz_mov_ps(
-              f.alive, _mm512_mul_ps(_mm512_fmadd_ps(b, pb, _mm512_mul_ps(a, pa)), inv));
+        // (a pa + b pb + corner alive) * inv, with the fused multiply-adds that GCC makes of the
+        // one-point formula: corner alive + (a pa + (b pb))
+        const auto weight = [&](__m512 a, __m512 pa, __m512 b, __m512 pb, __m512 corner,
+                                const std::uint8_t* alive) {
+          const __m512 sum = _mm512_fmadd_ps(corner, coarse_alive16(alive, cs),
+                                             _mm512_fmadd_ps(a, pa, _mm512_mul_ps(b, pb)));
+          return _mm512_maskz_mov_ps(f.alive, _mm512_mul_ps(sum, inv));
         };
-        c00 = weight(f.k.w, load(P.y0, kc), f.k.n, load(P.x0, kc));
-        c10 = weight(f.k.e, load(P.y0, kc + 1), f.k.n, load(P.x1, kc));
-        c01 = weight(f.k.w, load(P.y1, kc), f.k.s, load(P.x0, below));
-        c11 = weight(f.k.e, load(P.y1, kc + 1), f.k.s, load(P.x1, below));
+        c00 = weight(f.w, load(P.y0, kc), f.n, load(P.x0, kc), f.nw, &C.alive[kc]);
+        c10 = weight(f.e, load(P.y0, kc + 1), f.n, load(P.x1, kc), f.ne, &C.alive[kc + 1]);
+        c01 = weight(f.w, load(P.y1, kc), f.s, load(P.x0, below), f.sw, &C.alive[below]);
+        c11 = weight(f.e, load(P.y1, kc + 1), f.s, load(P.x1, below), f.se, &C.alive[below + 1]);
       }
       store(P.c00, kc, compute, c00);
       store(P.c10, kc, compute, c10);
