@@ -1199,6 +1199,28 @@ constexpr ApRowsFn kApRows[8] = {ap_rows<0, 0, false>, ap_rows<1, 0, false>, ap_
                                  ap_rows<1, 1, false>, ap_rows<0, 0, true>,  ap_rows<1, 0, true>,
                                  ap_rows<0, 1, true>,  ap_rows<1, 1, true>};
 
+// The terms of the stored stencil of coarse point K, A_c(K, K + d) for d = self, east, south,
+// south-east and south-west (m = 0..4): over the fine points p = (2I + ox, 2J + oy) around K, the
+// weight of K in p's row of P times the entry of p's row of A P for K + d (`entry`, its place in
+// the 3x3 block from base(p)), in the order the sums add them.
+template <class Term>
+[[gnu::always_inline]] inline void galerkin_terms(const Term& term) {
+  constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
+#pragma GCC unroll 3
+  for (int oy = -1; oy <= 1; ++oy)
+#pragma GCC unroll 3
+    for (int ox = -1; ox <= 1; ++ox) {
+      // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
+      const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
+#pragma GCC unroll 5
+      for (int m = 0; m < 5; ++m) {
+        const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
+        if (sx < 0 || sx > 2 || sy > 2) continue;
+        term(oy, ox, m, sy * 3 + sx);
+      }
+    }
+}
+
 // The Galerkin coarse operator of level l+1, A_c = P^T (A P), one chunk of coarse rows at a time.
 // Row p of P, for fine point p = (x,y) in cell (x>>1, y>>1), holds at most four weights: to the
 // cell's corners (I,J), (I+1,J), (I,J+1), (I+1,J+1). Row p of A P then touches a 3x3 block of
@@ -1331,21 +1353,10 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
               {widen(&in.c10[kc - 1]), widen(&in.y0[kc]), widen(&in.c00[kc])}};
           __m512d acc[5];
           for (__m512d& a : acc) a = _mm512_setzero_pd();
-          constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
-#pragma GCC unroll 3
-          for (int oy = -1; oy <= 1; ++oy)
-#pragma GCC unroll 3
-            for (int ox = -1; ox <= 1; ++ox) {
-              const float* row = rows[oy + 1][ox + 1] + I;
-              const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
-#pragma GCC unroll 5
-              for (int m = 0; m < 5; ++m) {
-                const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
-                if (sx < 0 || sx > 2 || sy > 2) continue;
-                acc[m] = _mm512_fmadd_pd(weight[oy + 1][ox + 1], widen(row + (sy * 3 + sx) * lanes),
-                                         acc[m]);
-              }
-            }
+          galerkin_terms([&](int oy, int ox, int m, int entry) {
+            acc[m] = _mm512_fmadd_pd(weight[oy + 1][ox + 1],
+                                     widen(rows[oy + 1][ox + 1] + I + entry * lanes), acc[m]);
+          });
           const __mmask16 lanes16 = lanes8;
           const __mmask8 compute =
               __mmask8(_mm_mask_cmpeq_epi8_mask(lanes16, _mm_maskz_loadu_epi8(lanes16, todo + kc),
@@ -1384,22 +1395,9 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
                                       {in.x1[kc - 1], 1.0f, in.x0[kc]},
                                       {in.c10[kc - 1], in.y0[kc], in.c00[kc]}};
           double acc[5] = {0, 0, 0, 0, 0};
-          constexpr int kDx[5] = {0, 1, 0, 1, -1}, kDy[5] = {0, 0, 1, 1, 1};
-#pragma GCC unroll 3
-          for (int oy = -1; oy <= 1; ++oy)
-#pragma GCC unroll 3
-            for (int ox = -1; ox <= 1; ++ox) {
-              const float wk = weight[oy + 1][ox + 1];
-              const float* row = rows[oy + 1][ox + 1] + I;
-              // K - base(p) is 1 for an offset of -1 or 0, and 0 for +1.
-              const int sx0 = ox == 1 ? 0 : 1, sy0 = oy == 1 ? 0 : 1;
-#pragma GCC unroll 5
-              for (int m = 0; m < 5; ++m) {
-                const int sx = sx0 + kDx[m], sy = sy0 + kDy[m];
-                if (sx < 0 || sx > 2 || sy > 2) continue;
-                acc[m] += double(wk) * row[(sy * 3 + sx) * lanes];
-              }
-            }
+          galerkin_terms([&](int oy, int ox, int m, int entry) {
+            acc[m] += double(weight[oy + 1][ox + 1]) * rows[oy + 1][ox + 1][I + entry * lanes];
+          });
           for (int m = 0; m < 5; ++m) s[m * lanes + I] = acc[m];
         }
         for (int I = i_lo; I < i_hi; ++I) {
