@@ -1337,7 +1337,7 @@ std::vector<std::uint8_t> Multigrid<NC>::galerkin_product(int l,
         // Eight points at a time, in double: each lane's terms in the scalar loop's order (the
         // products of two floats are exact in double, so fused multiply-adds give its bits), and
         // the stores and change flags of store(), masked to the points to compute. The scalar
-        // loops below ran a point at a time, a third of a new drawing's Galerkin product.
+        // loops below, a point at a time, were half of galerkin_product's own time.
         float* const arrays[6] = {C.diag.data(), C.inv_diag.data(), C.ae.data(),
                                   C.as.data(),   C.ase.data(),      C.asw.data()};
         std::uint8_t* const changes = rebuild ? changed.data() : nullptr;
