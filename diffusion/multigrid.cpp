@@ -818,15 +818,19 @@ struct Points16 {                        // sixteen fine points of one parity of
   __m512 d, e, w, n, s, ne, nw, se, sw;  // as stencil_at() gives them
   __mmask16 alive;
 };
+// row[x0 + 2i], i = 0..15, for the places x0 + 2i <= last (0 past it): the even places of the 32
+// from x0, loaded in two and picked in registers.
+inline __m512 every_other(const float* row, int x0, int last) {
+  const int left = last + 1 - x0;
+  const __m512 lo = _mm512_maskz_loadu_ps(lanes_left(left), row + x0);
+  const __m512 hi = _mm512_maskz_loadu_ps(lanes_left(left - 16), row + x0 + 16);
+  return _mm512_permutex2var_ps(
+      lo, _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30), hi);
+}
 // v at the points x = x0 + 2i, i = 0..15, of row y of a level in order (x0 >= -1; the places past
 // the ghost at x = w read as 0).
 inline __m512 every_other(const Level& L, const Plane& v, int x0, int y) {
-  const float* at = &v[L.at(x0, y)];
-  const int left = L.w + 1 - x0;
-  const __m512 lo = _mm512_maskz_loadu_ps(lanes_left(left), at);
-  const __m512 hi = _mm512_maskz_loadu_ps(lanes_left(left - 16), at + 16);
-  return _mm512_permutex2var_ps(
-      lo, _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30), hi);
+  return every_other(&v[L.at(0, y)], x0, L.w);
 }
 // The fine points x = 2 (I0 + i) + parity of row y, for the lanes i in `in`. Always inlined:
 // its registers are its caller's (and out of line, GCC 12 takes the intrinsics' undefined
@@ -1976,8 +1980,6 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
   // from 32 in registers), and the sum below term by term in its order (the compiler contracts
   // it to the same chain of fused multiply-adds).
   const int fw = levels_[l].w;  // fine rows are readable from x = -1 to fw
-  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
   for (int I = 0; I < C.w; I += 16) {
     const size_t kc = C.at(I, J);
     const __mmask16 in = lanes_left(C.w - I);
@@ -1992,24 +1994,21 @@ void Multigrid<NC>::restrict_row(int l, int J, const float* const north[NC],
         _mm_test_epi8_mask(_mm_maskz_loadu_epi8(in, &C.alive[kc]), _mm_set1_epi8(1));
     const int x = 2 * I;
     // Fine points x + 2i + offset, i = 0..15, of a row (offset -1, 0 or 1): on the finest level
-    // sixteen of one half of the row (Level::odd), elsewhere gathered from 32 in order.
-    const auto fine = [&](const float* r, int offset, const __m512i& pick) {
+    // sixteen of one half of the row (Level::odd), elsewhere every other one in order.
+    const auto fine = [&](const float* r, int offset) {
       if (odd_at) return load_at(r + (offset == 0 ? I : odd_at + I + (offset - 1) / 2));
-      const int o = x + offset - (offset == 1 ? 1 : 0);  // the first of the 32 loaded
-      const __m512 lo = _mm512_maskz_loadu_ps(lanes_left(fw + 1 - o), r + o);
-      const __m512 hi = _mm512_maskz_loadu_ps(lanes_left(fw + 1 - o - 16), r + o + 16);
-      return _mm512_permutex2var_ps(lo, pick, hi);
+      return every_other(r, x + offset, fw);
     };
     for (int c = 0; c < NC; ++c) {
       const float *rn = north[c], *r0 = centre[c], *rs = south[c];
-      __m512 v = _mm512_fmadd_ps(x0, fine(r0, 1, odd), fine(r0, 0, even));
-      v = _mm512_fmadd_ps(x1, fine(r0, -1, even), v);
-      v = _mm512_fmadd_ps(y0, fine(rs, 0, even), v);
-      v = _mm512_fmadd_ps(y1, fine(rn, 0, even), v);
-      v = _mm512_fmadd_ps(c00, fine(rs, 1, odd), v);
-      v = _mm512_fmadd_ps(c10, fine(rs, -1, even), v);
-      v = _mm512_fmadd_ps(c01, fine(rn, 1, odd), v);
-      v = _mm512_fmadd_ps(c11, fine(rn, -1, even), v);
+      __m512 v = _mm512_fmadd_ps(x0, fine(r0, 1), fine(r0, 0));
+      v = _mm512_fmadd_ps(x1, fine(r0, -1), v);
+      v = _mm512_fmadd_ps(y0, fine(rs, 0), v);
+      v = _mm512_fmadd_ps(y1, fine(rn, 0), v);
+      v = _mm512_fmadd_ps(c00, fine(rs, 1), v);
+      v = _mm512_fmadd_ps(c10, fine(rs, -1), v);
+      v = _mm512_fmadd_ps(c01, fine(rn, 1), v);
+      v = _mm512_fmadd_ps(c11, fine(rn, -1), v);
       _mm512_mask_storeu_ps(&C.rhs[c * nc + kc], in, _mm512_maskz_mov_ps(alive, v));
     }
   }
