@@ -577,6 +577,31 @@ TEST_CASE("the 8-bit stopping rule is within 0.25/255 of the exact discrete answ
   CHECK(2 * earlier_misses >= v_cycle_stops);
 }
 
+TEST_CASE("a cycle expected to be the last that is not has its residual restricted apart",
+          "[multigrid][max_error]") {
+  // A measured cycle that the 8-bit rule will likely stop after does not restrict the residual
+  // it leaves; when the rule goes on, a pass of its own does (restrict_residual). On crossing at
+  // 256^2 the second cycle's estimate is expected within the bound and comes out at 0.3/255: its
+  // third cycle must be the one that follows an in-wave restriction, to the bit. The same three
+  // cycles with a bound no estimate reaches, where only the third is expected to be the last.
+  const auto file =
+      wisp::io::read_drawing_xml(std::string(WISP_SOURCE_DIR) + "/data/drawings/crossing.xml");
+  std::vector<DiffusionCurve> curves = file.drawing.curves;
+  for (auto& c : curves)
+    for (auto& q : c.points) q *= 256.0 / file.drawing.width;
+  const Problem p = rasterize(curves, 256, 256);
+  SolverOptions rule;
+  rule.max_error = kEightBitError;
+  const Solution expected = solve_multigrid(p, rule);
+  REQUIRE(expected.stats.cycles == 3);
+  SolverOptions three;
+  three.max_error = 1e-30;
+  three.max_cycles = 3;
+  const Solution restricted = solve_multigrid(p, three);
+  REQUIRE(restricted.stats.cycles == 3);
+  CHECK(expected.planes == restricted.planes);
+}
+
 TEST_CASE("smoothing the coarse levels more ends sooner where the coarse modes are slow",
           "[multigrid][max_error]") {
   // Drawings on which the coarsest grids' modes (pockets, corridors) set the pace: with the
