@@ -2671,10 +2671,15 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
   // residual_norms, and the change from previous_, without two more passes over the finest level).
   std::vector<double> row_norms(size_t(F.h) * NC, 0.0);
   std::vector<float> row_change(size_t(F.h), 0.0f);
-  const MeasureHook measure = [&](int y, const float* norms) {
+  const auto keep_norms = [&](int y, const float* norms) {
     for (int c = 0; c < NC; ++c) row_norms[size_t(y) * NC + c] = norms[c];
+  };
+  const MeasureHook measure = [&](int y, const float* norms) {
+    keep_norms(y, norms);
     if (by_error) row_change[size_t(y)] = change_of_row(y);
   };
+  // Full multigrid's finest cycle: its norms only (the rule takes no change from it: below).
+  const MeasureHook measure_norms = keep_norms;
   const auto measured_change = [&] {
     return row_change.empty() ? 0.0
                               : double(*std::max_element(row_change.begin(), row_change.end()));
@@ -2703,7 +2708,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     fill_zero(levels_.back().e);
     solve_coarsest();
     for (int l = count - 2; l >= 0; --l) {
-      vcycle(l, l == 0 ? &measure : nullptr, CycleStart::kFromCoarse);
+      vcycle(l, l == 0 ? &measure_norms : nullptr, CycleStart::kFromCoarse);
       if (l == 0) previous_zero_ = false;
     }
     const bool measured = count > 1;  // (one level: no finest cycle ran)
