@@ -2746,7 +2746,7 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
     vcycle(0, &measure, restricted ? CycleStart::kRestricted : CycleStart::kHeld,
            by_error && !previous_zero_ ? &previous_ : nullptr, last);
     restricted = true;
-    unrestricted = last;
+    unrestricted = last && count > 1;  // (one level: no coarser one to restrict to)
     previous_zero_ = false;
     ++st.cycles;
     const double prev = rel;
