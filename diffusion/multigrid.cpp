@@ -2739,7 +2739,8 @@ double Multigrid<NC>::solve_correction(double rel, double tolerance, SolveStats&
                       (by_error && last_change > 0 &&
                        error_estimate(last_change * last_rate, last_rate) <= options_.max_error);
     // No pre-smoothing on the finest level: the last cycle's post-smoothing left it smoothed, and
-    // restricted its residual (measured for the stopping rule) to level 1. Sweeps before the
+    // restricted its residual (measured for the stopping rule) to level 1, or a pass of its own
+    // did (restrict_residual, above). Sweeps before the
     // coarse correction as well cost a wave over the finest level (5-6 ms of a 1024^2 solve's
     // two cycles) for a little more per cycle: 165 cycles against 173 over 27 solves of nine
     // drawings at 256^2 to 1024^2, all within the 8-bit bound (docs/performance.md).
